@@ -1,0 +1,76 @@
+"""Command line: ``exubrush run CASE`` and ``exubrush case CASE``."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import click
+
+from exubrush.parameters.fields import ParameterError, to_toml
+from exubrush.parameters.io import load_case
+from exubrush.units import UnitError
+
+
+def _fail(message: str) -> None:
+    click.echo(f"exubrush: error: {message}", err=True)
+    sys.exit(2)
+
+
+@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+@click.version_option(package_name="exubrush")
+def main() -> None:
+    """Toothbrush bristle deflection and contact forces with Exudyn."""
+
+
+@main.command()
+@click.argument("case")
+@click.option("--model", type=click.Choice(["dfm", "prb"]), help="Bristle model [default: dfm].")
+@click.option("--segments", type=int, help="DFM rigid bodies per bristle [default: 6].")
+@click.option("--periods", type=float,
+              help="Slide periods after the approach [default: 2].")
+@click.option("--out", type=click.Path(file_okay=False), help="Result directory "
+              "[default: results/CASE-MODEL].")
+@click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE",
+              help="Override a parameter by its dotted key, e.g. --set head.rows=2 "
+                   "or --set head.material.youngs_modulus='10 MPa'.")
+@click.option("--quiet", is_flag=True, help="No progress bar.")
+def run(case, model, segments, periods, out, overrides, quiet):
+    """Simulate CASE (orthogonal, parallel or a TOML case file) and save the results."""
+    shortcuts = [f"model.kind={model!r}" if model else None,
+                 f"model.segments={segments}" if segments is not None else None,
+                 f"motion.periods={periods}" if periods is not None else None]
+    try:
+        parameters = load_case(case, [*filter(None, shortcuts), *overrides])
+    except (ParameterError, UnitError) as err:
+        _fail(str(err))
+    from exubrush.scene import SceneError
+    from exubrush.simulation import simulate
+
+    try:
+        results = simulate(parameters, progress=not quiet)
+    except SceneError as err:
+        _fail(str(err))
+    directory = Path(out or f"results/{parameters.name}-{parameters.model.kind}")
+    results.save(directory)
+    meta = results.metadata
+    status = "completed" if meta["completed"] else "STOPPED EARLY (partial results)"
+    click.echo(
+        f"{status}: {meta['simulated_time_s']:.2f} s simulated in {meta['wall_time_s']:.1f} s "
+        f"wall time; results in {directory}/ (forces.csv, run.json, forces.png, shapes.npz)"
+    )
+    if not meta["completed"]:
+        click.echo(f"solver: {meta['message'] or 'stopped before the end time'}", err=True)
+        sys.exit(1)
+
+
+@main.command()
+@click.argument("case")
+@click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE",
+              help="Override a parameter before printing.")
+def case(case, overrides):
+    """Print CASE as a complete TOML case file, every parameter with its unit."""
+    try:
+        click.echo(to_toml(load_case(case, overrides)), nl=False)
+    except (ParameterError, UnitError) as err:
+        _fail(str(err))

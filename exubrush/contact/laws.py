@@ -1,0 +1,137 @@
+"""Contact force laws of a tip sphere on a rigid surface (pure, mm-N-s units).
+
+Each law is written once against a small "math back end" (an object providing ``sqrt``,
+``abs``, ``sign``, ``min``, ``max``, ``IfThenElse``) so that the same code runs on floats
+(:data:`FLOAT_MATH`) and on Exudyn's symbolic expressions (``exudyn.symbolic``), which the
+Exudyn adapter records into a C++ user function.
+
+Normal force, Hertz-type penalty with Flores-type damping (the paper's eq. 14)::
+
+    F_n = k δ^m1 + c sign(δ') |δ'|^m2 δ^m3,   δ > 0,   F_n clamped at >= 0
+
+Decision (SPEC.md §4): the surface never pulls. When the damping term outweighs the
+elastic one while the sphere leaves the surface, F_n is clamped to zero rather than
+allowed to become adhesive.
+
+Friction coefficient μ(v), v = |v_t| >= 0: from 0 at v = 0 to μ_s at v_s along the odd
+cubic step that runs from -μ_s at -v_s to +μ_s at +v_s (so μ grows linearly from zero,
+slope 1.5 μ_s / v_s, as in the step-function friction of common multibody codes), then a
+cubic step from μ_s at v_s to μ_d at v_d, and μ_d above. Value and slope are continuous.
+No stiction state: the law is regularised.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from types import SimpleNamespace
+
+from exubrush.parameters.fields import param
+
+
+def _float_if(condition, if_true, if_false):
+    return if_true if condition else if_false
+
+
+FLOAT_MATH = SimpleNamespace(
+    sqrt=math.sqrt,
+    abs=abs,
+    sign=lambda x: (x > 0) - (x < 0),
+    min=min,
+    max=max,
+    IfThenElse=_float_if,
+)
+"""Math back end for plain Python floats."""
+
+
+@dataclass(frozen=True)
+class ContactLaw:
+    """Parameters of the normal and friction laws (mm-N-s units; defaults: paper table 2).
+
+    k and c are the coefficients of the law evaluated in mm, N and s. Their units are
+    written for the paper's exponents (N/mm^1.3 for m1 = 1.3; N·s/mm³ for m2 = 1, m3 = 2);
+    with other exponents the number is still read in mm-N-s, whatever the unit says.
+    """
+
+    stiffness: float = param(100.0, "penalty stiffness k", "N/mm^1.3", above=0.0)
+    stiffness_exponent: float = param(1.3, "stiffness exponent m1", above=0.0)
+    damping: float = param(0.2, "Flores damping coefficient c", "N*s/mm^3", minimum=0.0)
+    damping_rate_exponent: float = param(1.0, "damping rate exponent m2", above=0.0)
+    damping_depth_exponent: float = param(2.0, "indentation exponent m3", minimum=0.0)
+    static_friction: float = param(0.8, "static friction coefficient mu_s", minimum=0.0)
+    dynamic_friction: float = param(0.76, "dynamic friction coefficient mu_d", minimum=0.0)
+    static_velocity: float = param(1.2, "static velocity tolerance v_s", "mm/s", above=0.0)
+    dynamic_velocity: float = param(1.5, "dynamic velocity tolerance v_d", "mm/s", above=0.0)
+
+    def check(self) -> None:
+        """Cross-field rules: v_s < v_d."""
+        if not self.static_velocity < self.dynamic_velocity:
+            raise ValueError(
+                f"static_velocity ({self.static_velocity:g} mm/s) must be below "
+                f"dynamic_velocity ({self.dynamic_velocity:g} mm/s)"
+            )
+
+
+def cubic_step(x, x0, h0, x1, h1, m=FLOAT_MATH):
+    """Smooth step from h0 at x <= x0 to h1 at x >= x1 (cubic 3ξ² - 2ξ³, zero end slopes)."""
+    xi = m.min(m.max((x - x0) / (x1 - x0), 0.0), 1.0)
+    return h0 + (h1 - h0) * xi * xi * (3.0 - 2.0 * xi)
+
+
+def normal_force(law: ContactLaw, penetration, penetration_rate, m=FLOAT_MATH):
+    """Normal contact force F_n >= 0 [N] for penetration δ [mm] and its rate δ' [mm/s]."""
+    depth = m.max(penetration, 0.0)
+    rate = penetration_rate
+    elastic = law.stiffness * depth**law.stiffness_exponent
+    dissipative = (
+        law.damping
+        * m.sign(rate)
+        * m.abs(rate) ** law.damping_rate_exponent
+        * depth**law.damping_depth_exponent
+    )
+    return m.max(elastic + dissipative, 0.0)
+
+
+def friction_coefficient(law: ContactLaw, slip_speed, m=FLOAT_MATH):
+    """Velocity-dependent friction coefficient μ(|v_t|) [-]; ``slip_speed`` in mm/s."""
+    to_static = cubic_step(
+        slip_speed, -law.static_velocity, -law.static_friction,
+        law.static_velocity, law.static_friction, m,
+    )
+    to_dynamic = cubic_step(
+        slip_speed, law.static_velocity, law.static_friction,
+        law.dynamic_velocity, law.dynamic_friction, m,
+    )
+    return m.IfThenElse(slip_speed < law.static_velocity, to_static, to_dynamic)
+
+
+def sphere_plane_force(law: ContactLaw, radius: float, centre, velocity, omega, m=FLOAT_MATH):
+    """Force and moment of a plane z = 0 (normal +z) on a sphere.
+
+    Parameters
+    ----------
+    radius : float
+        Sphere radius r [mm].
+    centre, velocity, omega : sequence of 3
+        Centre position [mm], centre velocity [mm/s] and angular velocity [rad/s] of the
+        sphere, in the plane's frame.
+
+    Returns
+    -------
+    list of 6
+        Force on the sphere [N] and moment about its centre [N·mm], plane frame. The
+        friction force acts at the contact point (0, 0, -r) from the centre, so its moment
+        is (-r e_z) × F_t = (r F_ty, -r F_tx, 0).
+    """
+    penetration = radius - centre[2]
+    # velocity of the material point of the sphere at the contact point: v + ω × (-r e_z)
+    slip_x = velocity[0] - radius * omega[1]
+    slip_y = velocity[1] + radius * omega[0]
+    force_n = normal_force(law, penetration, -velocity[2], m)
+    slip_speed = m.sqrt(slip_x * slip_x + slip_y * slip_y + 1e-12)
+    # μ(v)/v -> 1.5 μ_s / v_s as v -> 0, so the force is a smooth viscous-like function of
+    # slip; the 1e-12 mm²/s² floor only keeps the division defined at exactly zero slip.
+    scale = -friction_coefficient(law, slip_speed, m) * force_n / slip_speed
+    force_tx = scale * slip_x
+    force_ty = scale * slip_y
+    return [force_tx, force_ty, force_n, radius * force_ty, -radius * force_tx, 0.0]

@@ -1,0 +1,103 @@
+"""Exudyn building blocks shared by the bristle models: slices, markers, spring-dampers."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import exudyn as exu
+import exudyn.itemInterface as eii
+import numpy as np
+from exudyn.rigidBodyUtilities import InertiaSphere, RigidBodyInertia
+
+from exubrush.models.geometry import BristleGeometry
+
+
+@dataclass
+class BristleItems:
+    """Exudyn indices of one bristle.
+
+    Attributes
+    ----------
+    nodes : list of NodeIndex
+        Rigid-body nodes from root to tip; the last one sits at the tip-sphere centre.
+    bodies : list of ObjectIndex
+        The matching rigid bodies.
+    tip_body : ObjectIndex
+        Body carrying the tip sphere (its node is at the sphere centre).
+    connectors : list of ObjectIndex
+        Spring-dampers (and joints) of the bristle, root first.
+    """
+
+    nodes: list = field(default_factory=list)
+    bodies: list = field(default_factory=list)
+    connectors: list = field(default_factory=list)
+
+    @property
+    def tip_body(self):
+        return self.bodies[-1]
+
+
+def slice_inertia(
+    bristle: BristleGeometry, density: float, length: float, centre_offset: float = 0.0
+) -> RigidBodyInertia:
+    """Inertia of a prismatic slice of the bristle [t, t·mm²].
+
+    The slice has ``length`` [mm] along the bristle's x axis and its centre of mass at
+    ``centre_offset`` [mm] from the body's node along x. Principal moments about the centre:
+    ρL(I_y + I_z) about x, ρL·I_y + mL²/12 about y, ρL·I_z + mL²/12 about z.
+    """
+    section = bristle.section
+    mass = density * section.area * length
+    tensor = np.diag(
+        [
+            density * length * section.polar_moment,
+            density * length * section.second_moment_y + mass * length**2 / 12.0,
+            density * length * section.second_moment_z + mass * length**2 / 12.0,
+        ]
+    )
+    inertia = RigidBodyInertia(mass=mass, inertiaTensor=tensor, inertiaTensorAtCOM=True)
+    return inertia.Translated([centre_offset, 0.0, 0.0])
+
+
+def tip_sphere_inertia(bristle: BristleGeometry, density: float) -> RigidBodyInertia:
+    """Solid tip sphere of the bristle's material, centred at the tip node."""
+    radius = bristle.tip_radius
+    return InertiaSphere(mass=density * 4.0 / 3.0 * np.pi * radius**3, radius=radius)
+
+
+def add_body(mbs, position, frame, inertia):
+    """Add a rigid body (Euler-parameter node, no gravity: it is negligible at this scale)."""
+    item = mbs.CreateRigidBody(
+        referencePosition=list(position),
+        referenceRotationMatrix=np.asarray(frame),
+        inertia=inertia,
+        gravity=[0.0, 0.0, 0.0],
+        nodeType=exu.NodeType.RotationEulerParameters,
+        show=False,
+        returnDict=True,
+    )
+    return item["nodeNumber"], item["bodyNumber"]
+
+
+def rigid_marker(mbs, body, position, frame=None):
+    """Position-and-orientation marker on ``body`` at local ``position`` with local ``frame``."""
+    rotation = np.eye(3) if frame is None else np.asarray(frame)
+    return mbs.AddMarker(
+        eii.MarkerBodyRigid(
+            bodyNumber=body, localHT=exu.HT(rotation=rotation, translation=list(position))
+        )
+    )
+
+
+def add_spring_damper(mbs, marker0, marker1, stiffness, damping, user_function=0):
+    """Intrinsic 6x6 spring-damper between two rigid markers (SE(3) log at the mid-frame)."""
+    return mbs.AddObject(
+        eii.ObjectConnectorRigidBodySpringDamper(
+            markerNumbers=[marker0, marker1],
+            stiffness=np.asarray(stiffness).tolist(),
+            damping=np.asarray(damping).tolist(),
+            useIntrinsicFormulation=True,
+            springForceTorqueUserFunction=user_function,
+            visualization=eii.VObjectConnectorRigidBodySpringDamper(show=False),
+        )
+    )

@@ -1,0 +1,68 @@
+"""Discrete flexible model (DFM) of a bristle in Exudyn.
+
+The bristle of length l is cut into N segments of length L = l/N with nodes at s = L, 2L,
+..., l (the root node s = 0 is the handle). Each segment's elasticity is one 6x6
+spring-damper at the segment's midpoint, with both connector frames there (see
+:mod:`exubrush.models.stiffness`); the rigid body of node i spans from one midpoint to the
+next, so it carries the slice [iL - L/2, iL + L/2] (the tip body the half slice
+[l - L/2, l] and the tip sphere). This is a Hencky bar chain, whose tip error falls as 1/N²
+against the elastica (tests/integration/test_cantilever.py).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from exubrush.models.assembly import (
+    BristleItems,
+    add_body,
+    add_spring_damper,
+    rigid_marker,
+    slice_inertia,
+    tip_sphere_inertia,
+)
+from exubrush.models.geometry import BristleGeometry
+from exubrush.models.stiffness import midpoint_stiffness
+from exubrush.parameters.case import Material
+
+
+def add_dfm_bristle(
+    mbs,
+    handle_body,
+    bristle: BristleGeometry,
+    material: Material,
+    segments: int,
+    handle_position=(0.0, 0.0, 0.0),
+) -> BristleItems:
+    """Add a DFM bristle clamped to ``handle_body``.
+
+    Parameters
+    ----------
+    segments : int
+        Number N of rigid bodies.
+    handle_position : array of 3
+        Reference position of the handle body [mm]; its frame is parallel to the head frame.
+    """
+    if segments < 1:
+        raise ValueError(f"a DFM bristle needs at least one segment, got {segments}")
+    L = bristle.length / segments
+    K = midpoint_stiffness(bristle.section, material.youngs_modulus, material.shear_modulus, L)
+    C = material.damping_time * K
+    items = BristleItems()
+    previous_marker = rigid_marker(mbs, handle_body, bristle.point(0.5 * L), bristle.frame)
+    for i in range(1, segments + 1):
+        if i < segments:
+            inertia = slice_inertia(bristle, material.density, L)
+        else:
+            inertia = slice_inertia(bristle, material.density, 0.5 * L, -0.25 * L)
+            inertia = inertia + tip_sphere_inertia(bristle, material.density)
+        node, body = add_body(
+            mbs, np.add(handle_position, bristle.point(i * L)), bristle.frame, inertia
+        )
+        items.nodes.append(node)
+        items.bodies.append(body)
+        marker = rigid_marker(mbs, body, [-0.5 * L, 0.0, 0.0])
+        items.connectors.append(add_spring_damper(mbs, previous_marker, marker, K, C))
+        if i < segments:
+            previous_marker = rigid_marker(mbs, body, [0.5 * L, 0.0, 0.0])
+    return items

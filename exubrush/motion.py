@@ -1,0 +1,171 @@
+"""Prescribed motion of the brush head (pure, mm-s units).
+
+The head first approaches the surface along the surface normal, then slides along one
+axis. Both parts give position, velocity and acceleration consistently, so the Exudyn
+drive and the inertia correction of the handle force use the same motion.
+
+Approach (exubrush's choice; the paper does not describe one): the head starts with its
+lowest tip sphere ``clearance`` above the surface and moves down to the interaction distance
+d along a quintic smooth step 10τ³ - 15τ⁴ + 6τ⁵ (zero velocity and acceleration at both
+ends), then holds for ``hold`` seconds before sliding starts.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+from scipy.interpolate import CubicSpline
+
+
+def smooth_step(tau: float) -> tuple[float, float, float]:
+    """Quintic step s(τ) = 10τ³ - 15τ⁴ + 6τ⁵ clamped to [0, 1], with s' and s''."""
+    if tau <= 0.0:
+        return 0.0, 0.0, 0.0
+    if tau >= 1.0:
+        return 1.0, 0.0, 0.0
+    return (
+        tau**3 * (10.0 - 15.0 * tau + 6.0 * tau**2),
+        30.0 * tau**2 * (1.0 - tau) ** 2,
+        60.0 * tau * (1.0 - tau) * (1.0 - 2.0 * tau),
+    )
+
+
+@dataclass(frozen=True)
+class SineSlide:
+    """Slide s(τ) = A sin(2π τ / T) for ``periods`` periods.
+
+    Attributes
+    ----------
+    amplitude : float
+        A [mm].
+    period : float
+        T [s].
+    periods : float
+        Number of periods simulated [-].
+    """
+
+    amplitude: float
+    period: float
+    periods: float
+
+    @property
+    def duration(self) -> float:
+        """Slide duration [s]."""
+        return self.period * self.periods
+
+    def evaluate(self, tau: float) -> tuple[float, float, float]:
+        """Position [mm], velocity [mm/s] and acceleration [mm/s²] at slide time τ [s]."""
+        omega = 2.0 * math.pi / self.period
+        return (
+            self.amplitude * math.sin(omega * tau),
+            self.amplitude * omega * math.cos(omega * tau),
+            -self.amplitude * omega**2 * math.sin(omega * tau),
+        )
+
+
+class TabulatedSlide:
+    """Slide read from measured samples, interpolated by a C² cubic spline.
+
+    The spline starts at position 0 (the first sample is taken as the origin) and its
+    first derivative is used as the drive velocity, so position and velocity agree.
+    """
+
+    def __init__(self, times: np.ndarray, positions: np.ndarray):
+        times = np.asarray(times, dtype=float)
+        positions = np.asarray(positions, dtype=float)
+        if times.ndim != 1 or times.shape != positions.shape or times.size < 2:
+            raise ValueError("a slide table needs at least two (time, position) rows")
+        if not np.all(np.isfinite(times)) or not np.all(np.isfinite(positions)):
+            raise ValueError("a slide table must hold finite numbers only")
+        if np.any(np.diff(times) <= 0.0):
+            raise ValueError("slide table times must increase strictly")
+        self._t0 = float(times[0])
+        self._spline = CubicSpline(times - times[0], positions - positions[0])
+        self.duration = float(times[-1] - times[0])
+
+    def evaluate(self, tau: float) -> tuple[float, float, float]:
+        """Position [mm], velocity [mm/s] and acceleration [mm/s²] at slide time τ [s]."""
+        tau = min(max(tau, 0.0), self.duration)
+        return tuple(float(self._spline(tau, k)) for k in range(3))
+
+
+def read_slide_csv(path: str | Path) -> TabulatedSlide:
+    """Read a slide profile CSV with header ``time [s]`` and ``slider_position [mm]``.
+
+    Other columns are ignored; the unit in each header is converted (e.g. ``[ms]``,
+    ``[m]``), and a header without a unit is refused.
+    """
+    from exubrush.units import to_internal
+
+    path = Path(path)
+    if not path.is_file():
+        raise ValueError(f"slide CSV {str(path)!r} does not exist")
+    with path.open(newline="") as handle:
+        rows = list(csv.reader(handle))
+    if len(rows) < 3:
+        raise ValueError(f"slide CSV {str(path)!r} needs a header and at least two rows")
+    columns = {}
+    for index, name in enumerate(rows[0]):
+        label, _, unit = name.strip().partition("[")
+        columns[label.strip()] = (index, unit.rstrip("]").strip())
+    data = {}
+    for label, target in (("time", "s"), ("slider_position", "mm")):
+        if label not in columns:
+            raise ValueError(f"slide CSV {str(path)!r} has no column '{label} [unit]'")
+        index, unit = columns[label]
+        if not unit:
+            raise ValueError(f"slide CSV column '{label}' has no unit; write '{label} [{target}]'")
+        factor = to_internal(f"1 {unit}", target)
+        try:
+            data[label] = np.array([float(row[index]) for row in rows[1:]]) * factor
+        except (ValueError, IndexError):
+            raise ValueError(f"slide CSV column '{label}' has a non-numeric cell") from None
+    return TabulatedSlide(data["time"], data["slider_position"])
+
+
+@dataclass(frozen=True)
+class HeadMotion:
+    """Approach, hold, then slide of the head.
+
+    Attributes
+    ----------
+    approach_distance : float
+        Distance the head travels towards the surface [mm].
+    approach_duration : float
+        Time of the approach [s].
+    hold_duration : float
+        Rest between approach and slide [s].
+    slide : SineSlide or TabulatedSlide
+        The sliding profile, started at ``slide_start``.
+    """
+
+    approach_distance: float
+    approach_duration: float
+    hold_duration: float
+    slide: SineSlide | TabulatedSlide
+
+    @property
+    def slide_start(self) -> float:
+        """Time at which sliding starts [s]."""
+        return self.approach_duration + self.hold_duration
+
+    @property
+    def end_time(self) -> float:
+        """Total simulated time [s]."""
+        return self.slide_start + self.slide.duration
+
+    def descent(self, t: float) -> tuple[float, float, float]:
+        """Distance moved towards the surface [mm], its rate [mm/s] and acceleration [mm/s²]."""
+        s, ds, dds = smooth_step(t / self.approach_duration)
+        D, T = self.approach_distance, self.approach_duration
+        return D * s, D * ds / T, D * dds / T**2
+
+    def sliding(self, t: float) -> tuple[float, float, float]:
+        """Slider position [mm], velocity [mm/s] and acceleration [mm/s²] at time t [s]."""
+        if t <= self.slide_start:
+            return 0.0, 0.0, 0.0
+        return self.slide.evaluate(t - self.slide_start)

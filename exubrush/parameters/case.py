@@ -1,0 +1,210 @@
+"""The parameters of a brushing case: head, contact, model, motion, solver, output.
+
+Frames. The head frame has X along the head's long axis, Y across it and Z along the
+surface normal, pointing from the surface to the head. The surface is the plane Z = 0.
+A bristle's own frame has x from root to tip, y along the head's long axis (the section
+width) and z = x × y (the section height, across the head).
+
+Defaults are the paper's silicone brush (E, tip radius, d, contact law) and, where the
+paper is silent, exubrush's documented choices (layout, section, length, ν, ρ, damping,
+perturbation, approach): see README, "Default head".
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+
+from exubrush.contact.laws import ContactLaw
+from exubrush.models.sections import SHAPES
+from exubrush.parameters.fields import build, param
+
+
+@dataclass(frozen=True)
+class Material:
+    """Linear elastic bristle material."""
+
+    youngs_modulus: float = param(7.5, "Young's modulus E (paper: silicone)", "MPa", above=0.0)
+    poisson_ratio: float = param(0.48, "Poisson ratio (silicone, nearly incompressible)",
+                                 minimum=0.0, below=0.5)
+    density: float = param(1.1e-9, "density (silicone rubber)", "t/mm^3", "kg/m^3", above=0.0)
+    damping_time: float = param(
+        5e-5, "stiffness-proportional damping: C = damping_time * K", "s", minimum=0.0
+    )
+
+    @property
+    def shear_modulus(self) -> float:
+        """G = E / (2(1 + ν)) [MPa]."""
+        return self.youngs_modulus / (2.0 * (1.0 + self.poisson_ratio))
+
+
+@dataclass(frozen=True)
+class BristleShape:
+    """Geometry of one straight bristle."""
+
+    length: float = param(5.0, "free length, root to tip-sphere centre", "mm", above=0.0)
+    section: str = param("rectangle", "cross-section shape", "text", choices=SHAPES)
+    width: float = param(0.6, "section width along the head's long axis", "mm", above=0.0)
+    height: float = param(0.9, "section height across the head", "mm", above=0.0)
+    tip_radius: float = param(0.4, "radius of the tip sphere (paper)", "mm", above=0.0)
+
+    def check(self) -> None:
+        """A circle needs equal width and height."""
+        if self.section == "circle" and not math.isclose(self.width, self.height):
+            raise ValueError("a circle section needs width == height (the diameter)")
+
+
+@dataclass(frozen=True)
+class BristleEntry:
+    """One bristle of an explicit list layout (head.layout = "list")."""
+
+    x: float = param(0.0, "root position along the head's long axis", "mm")
+    y: float = param(0.0, "root position across the head", "mm")
+    tilt_x: float = param(0.0, "root tilt about the head's long axis", "rad", "deg")
+    tilt_y: float = param(0.0, "root tilt about the across axis", "rad", "deg")
+    length: float = param(5.0, "free length, root to tip-sphere centre", "mm", above=0.0)
+    section: str = param("rectangle", "cross-section shape", "text", choices=SHAPES)
+    width: float = param(0.6, "section width along the head's long axis", "mm", above=0.0)
+    height: float = param(0.9, "section height across the head", "mm", above=0.0)
+    tip_radius: float = param(0.4, "radius of the tip sphere", "mm", above=0.0)
+
+
+@dataclass(frozen=True)
+class Head:
+    """Bristle layout of the head.
+
+    ``layout = "grid"`` places ``rows x columns`` copies of ``bristle`` on a regular grid
+    centred on the head; ``layout = "list"`` uses the ``bristles`` entries instead.
+    """
+
+    layout: str = param("grid", "bristle layout", "text", choices=("grid", "list"))
+    rows: int = param(4, "grid: bristles across the head", above=0)
+    columns: int = param(12, "grid: bristles along the head's long axis", above=0)
+    pitch_along: float = param(1.8, "grid: pitch along the long axis", "mm", above=0.0)
+    pitch_across: float = param(1.8, "grid: pitch across the head", "mm", above=0.0)
+    root_tilt: float = param(
+        math.radians(0.5),
+        "symmetry breaking: each root is tilted by this angle in a seeded random direction",
+        "rad", "deg", minimum=0.0, below=math.radians(30.0),
+    )
+    seed: int = param(1, "seed of the root-tilt directions", minimum=0)
+    material: Material = field(default_factory=Material)
+    bristle: BristleShape = field(default_factory=BristleShape)
+    bristles: tuple[BristleEntry, ...] = ()
+
+    def check(self) -> None:
+        """A list layout needs entries."""
+        if self.layout == "list" and not self.bristles:
+            raise ValueError("layout 'list' needs at least one [[head.bristles]] entry")
+
+
+@dataclass(frozen=True)
+class Model:
+    """Bristle model and its discretisation."""
+
+    kind: str = param("dfm", "bristle model", "text", choices=("dfm", "prb"))
+    segments: int = param(6, "DFM: rigid bodies per bristle", above=0)
+    prb_parameters: str = param(
+        "howell-table",
+        "PRB: 'howell-table' interpolates gamma, K_theta at n = 1/mu_d; 'explicit' uses below",
+        "text", choices=("howell-table", "explicit"),
+    )
+    prb_gamma: float = param(0.8329, "PRB: characteristic radius factor gamma (explicit)",
+                             above=0.0, below=1.0)
+    prb_stiffness_coefficient: float = param(
+        2.6001, "PRB: stiffness coefficient K_theta (explicit)", above=0.0
+    )
+
+
+@dataclass(frozen=True)
+class Motion:
+    """Approach, hold and slide of the head (see exubrush.motion)."""
+
+    direction: str = param(
+        "orthogonal", "slide axis: across the long axis (orthogonal) or along it (parallel)",
+        "text", choices=("orthogonal", "parallel"),
+    )
+    profile: str = param("sine", "slide profile", "text", choices=("sine", "csv"))
+    amplitude: float = param(15.0, "sine: slide amplitude", "mm", above=0.0)
+    period: float = param(12.0, "sine: slide period", "s", above=0.0)
+    periods: float = param(2.0, "sine: number of slide periods simulated", above=0.0)
+    csv_file: str = param("", "csv: slide profile file (time [s], slider_position [mm])", "text")
+    interaction_distance: float = param(
+        4.2, "distance d from the bristle roots' surface to the plane (paper)", "mm", above=0.0
+    )
+    approach_clearance: float = param(
+        0.3, "gap between the lowest tip sphere and the plane at t = 0", "mm", minimum=0.0
+    )
+    approach_duration: float = param(1.0, "time to move from clearance to d", "s", above=0.0)
+    hold_duration: float = param(0.2, "rest at d before sliding", "s", minimum=0.0)
+
+    def check(self) -> None:
+        """A CSV profile needs a file."""
+        if self.profile == "csv" and not self.csv_file:
+            raise ValueError("profile 'csv' needs csv_file")
+
+
+@dataclass(frozen=True)
+class Solver:
+    """Exudyn implicit solver settings (generalized-alpha)."""
+
+    step_size: float = param(1e-3, "maximum (initial) time step", "s", above=0.0)
+    minimum_step_size: float = param(1e-9, "smallest step of the automatic step reduction",
+                                     "s", above=0.0)
+    spectral_radius: float = param(
+        0.0, "generalized-alpha spectral radius at infinity (0 = most damping)", minimum=0.0
+    )
+    relative_tolerance: float = param(1e-8, "Newton relative tolerance", above=0.0)
+    absolute_tolerance: float = param(1e-10, "Newton absolute tolerance (residual)", above=0.0)
+    modified_newton: str = param("yes", "reuse the Jacobian between steps", "text",
+                                 choices=("yes", "no"))
+    user_functions: str = param(
+        "symbolic", "contact law back end: symbolic (C++) or python", "text",
+        choices=("symbolic", "python"),
+    )
+
+    def check(self) -> None:
+        """Spectral radius within [0, 1]; minimum step below the step."""
+        if self.spectral_radius > 1.0:
+            raise ValueError(f"spectral_radius {self.spectral_radius:g} must be <= 1")
+        if self.minimum_step_size > self.step_size:
+            raise ValueError("minimum_step_size must not exceed step_size")
+
+
+@dataclass(frozen=True)
+class Output:
+    """What is recorded."""
+
+    interval: float = param(0.01, "force output interval", "s", above=0.0)
+    shape_interval: float = param(0.1, "bristle shape output interval", "s", above=0.0)
+
+
+@dataclass(frozen=True)
+class Case:
+    """A complete brushing case."""
+
+    name: str = param("orthogonal", "case name", "text")
+    head: Head = field(default_factory=Head)
+    contact: ContactLaw = field(default_factory=ContactLaw)
+    model: Model = field(default_factory=Model)
+    motion: Motion = field(default_factory=Motion)
+    solver: Solver = field(default_factory=Solver)
+    output: Output = field(default_factory=Output)
+
+
+def orthogonal_case() -> Case:
+    """The paper's orthogonal brushing: x(t) = 15 mm sin(πt/6) across the head's long axis."""
+    return build(Case, {})
+
+
+def parallel_case() -> Case:
+    """The paper's parallel brushing: x(t) = 30 mm sin(πt/12) along the head's long axis."""
+    base = orthogonal_case()
+    return replace(
+        base,
+        name="parallel",
+        motion=replace(base.motion, direction="parallel", amplitude=30.0, period=24.0),
+    )
+
+
+BUILT_IN_CASES = {"orthogonal": orthogonal_case, "parallel": parallel_case}

@@ -1,0 +1,262 @@
+"""Typed, unit-aware parameter dataclasses: declaration, reading, validation, TOML output.
+
+A parameter is a field of a frozen dataclass declared with :func:`param`, which records its
+internal unit, the unit shown to users, a one-line description and its allowed range. The
+generic functions here walk such dataclasses, so a case file, ``--set KEY=VALUE`` and
+``exubrush case`` all use the same dotted keys, units and checks.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import tomllib
+import typing
+from typing import Any
+
+import tomlkit
+
+from exubrush.units import UnitError, format_quantity, registry, to_internal
+
+
+class ParameterError(ValueError):
+    """A parameter value is missing, malformed, of the wrong unit or out of range."""
+
+
+def param(
+    default: Any,
+    doc: str,
+    unit: str = "1",
+    display: str | None = None,
+    minimum: float | None = None,
+    above: float | None = None,
+    below: float | None = None,
+    choices: tuple[str, ...] | None = None,
+) -> Any:
+    """Declare a parameter field.
+
+    Parameters
+    ----------
+    default : value
+        Default, in the internal unit ``unit``.
+    doc : str
+        One-line description shown in case files.
+    unit : str
+        Internal unit ("1" for dimensionless numbers, "text" for strings).
+    display : str, optional
+        Unit used when writing the case file (default: ``unit``).
+    minimum, above, below : float, optional
+        Allowed range: value >= minimum, value > above, value < below (internal unit).
+    choices : tuple of str, optional
+        Allowed values of a text parameter.
+    """
+    metadata = {
+        "doc": doc,
+        "unit": unit,
+        "display": display or unit,
+        "minimum": minimum,
+        "above": above,
+        "below": below,
+        "choices": choices,
+    }
+    if isinstance(default, list | dict):
+        raise TypeError("use a tuple or a default_factory for container defaults")
+    return dataclasses.field(default=default, metadata=metadata)
+
+
+def _field_types(cls: type) -> dict[str, Any]:
+    return typing.get_type_hints(cls)
+
+
+def _nested_entry_type(annotation: Any) -> type | None:
+    """Return E for ``tuple[E, ...]`` with E a dataclass, else None."""
+    if typing.get_origin(annotation) is tuple:
+        args = typing.get_args(annotation)
+        if args and dataclasses.is_dataclass(args[0]):
+            return args[0]
+    return None
+
+
+def _read_scalar(key: str, value: Any, meta: dict, annotation: Any) -> Any:
+    unit = meta["unit"]
+    if unit == "text":
+        if not isinstance(value, str):
+            raise ParameterError(f"{key}: expected text, got {value!r}")
+        if meta["choices"] and value not in meta["choices"]:
+            raise ParameterError(
+                f"{key}: {value!r} is not one of {', '.join(map(repr, meta['choices']))}"
+            )
+        return value
+    if annotation is int:
+        if isinstance(value, bool) or not isinstance(value, int):
+            raise ParameterError(f"{key}: expected a whole number, got {value!r}")
+        number = value
+    else:
+        if isinstance(value, int | float) and not isinstance(value, bool) and unit != "1":
+            example = f"{value} {meta['display']}"
+            raise ParameterError(f'{key}: {value!r} has no unit; write it with a unit, "{example}"')
+        try:
+            number = to_internal(value, unit)
+        except UnitError as err:
+            raise ParameterError(f"{key}: {err}") from None
+        if not math.isfinite(number):
+            raise ParameterError(f"{key}: {value!r} is not a finite number")
+    shown = value if isinstance(value, str) else repr(value)
+    for bound, fails, relation in (
+        ("minimum", lambda b: number < b, ">="),
+        ("above", lambda b: number <= b, ">"),
+        ("below", lambda b: number >= b, "<"),
+    ):
+        if meta[bound] is not None and fails(meta[bound]):
+            raise ParameterError(f"{key}: {shown} must be {relation} {_bound_text(meta, bound)}")
+    return number
+
+
+def _bound_text(meta: dict, bound: str) -> str:
+    """A range bound written in the unit users see."""
+    if meta["unit"] == "1":
+        return f"{meta[bound]:g}"
+    magnitude = registry().Quantity(meta[bound], meta["unit"]).to(meta["display"]).magnitude
+    return f"{magnitude:g} {meta['display']}"
+
+
+def build(cls: type, data: dict | None, prefix: str = "") -> Any:
+    """Create dataclass ``cls`` from a (TOML-like) mapping, checking keys, units and ranges.
+
+    Missing keys take their defaults; unknown keys are refused.
+    """
+    data = {} if data is None else data
+    if not isinstance(data, dict):
+        raise ParameterError(f"{prefix.rstrip('.') or 'case'}: expected a table, got {data!r}")
+    types = _field_types(cls)
+    names = {f.name for f in dataclasses.fields(cls)}
+    for key in data:
+        if key not in names:
+            raise ParameterError(
+                f"{prefix}{key}: unknown key; known keys here: {', '.join(sorted(names))}"
+            )
+    values = {}
+    for f in dataclasses.fields(cls):
+        key = prefix + f.name
+        annotation = types[f.name]
+        entry_type = _nested_entry_type(annotation)
+        if dataclasses.is_dataclass(annotation):
+            values[f.name] = build(annotation, data.get(f.name), key + ".")
+        elif entry_type is not None:
+            raw = data.get(f.name, [])
+            if not isinstance(raw, list):
+                raise ParameterError(f"{key}: expected a list of tables")
+            values[f.name] = tuple(
+                build(entry_type, item, f"{key}[{i}].") for i, item in enumerate(raw)
+            )
+        elif f.name in data:
+            values[f.name] = _read_scalar(key, data[f.name], f.metadata, annotation)
+    instance = cls(**values)
+    check = getattr(instance, "check", None)
+    if check is not None:
+        try:
+            check()
+        except ValueError as err:
+            raise ParameterError(f"{prefix.rstrip('.') or 'case'}: {err}") from None
+    return instance
+
+
+def dotted_keys(cls: type, prefix: str = "") -> list[str]:
+    """All scalar parameter keys of ``cls`` in dotted form (lists of tables excluded)."""
+    keys = []
+    types = _field_types(cls)
+    for f in dataclasses.fields(cls):
+        annotation = types[f.name]
+        if dataclasses.is_dataclass(annotation):
+            keys += dotted_keys(annotation, prefix + f.name + ".")
+        elif _nested_entry_type(annotation) is None:
+            keys.append(prefix + f.name)
+    return keys
+
+
+def _display_value(value: Any, meta: dict) -> Any:
+    if meta["unit"] in ("1", "text") or isinstance(value, int) and meta["unit"] == "1":
+        return value
+    display = meta["display"]
+    magnitude = registry().Quantity(value, meta["unit"]).to(display).magnitude
+    return format_quantity(magnitude, display)
+
+
+def to_plain(instance: Any) -> dict:
+    """Dataclass -> nested dict of TOML values (quantities as unit-labelled text)."""
+    out = {}
+    types = _field_types(type(instance))
+    for f in dataclasses.fields(instance):
+        value = getattr(instance, f.name)
+        annotation = types[f.name]
+        if dataclasses.is_dataclass(annotation):
+            out[f.name] = to_plain(value)
+        elif _nested_entry_type(annotation) is not None:
+            out[f.name] = [to_plain(item) for item in value]
+        else:
+            out[f.name] = _display_value(value, f.metadata)
+    return out
+
+
+def to_toml(instance: Any) -> str:
+    """Write a parameter dataclass as commented TOML that :func:`build` reads back."""
+    document = tomlkit.document()
+    _fill_table(document, instance)
+    return tomlkit.dumps(document)
+
+
+def _fill_table(table: Any, instance: Any) -> None:
+    types = _field_types(type(instance))
+    nested = []
+    for f in dataclasses.fields(instance):
+        annotation = types[f.name]
+        value = getattr(instance, f.name)
+        if dataclasses.is_dataclass(annotation) or _nested_entry_type(annotation) is not None:
+            nested.append((f.name, annotation, value))
+            continue
+        table.add(f.name, _display_value(value, f.metadata))
+        unit = f.metadata["display"]
+        hint = f"[{unit}]" if unit not in ("1", "text") else "[-]" if unit == "1" else ""
+        choices = f.metadata["choices"]
+        if choices:
+            hint = "; one of " + ", ".join(choices)
+        table[f.name].comment(f"{f.metadata['doc']} {hint}".strip())
+    for name, annotation, value in nested:
+        if dataclasses.is_dataclass(annotation):
+            sub = tomlkit.table()
+            _fill_table(sub, value)
+            table.add(name, sub)
+        else:
+            array = tomlkit.aot()
+            for item in value:
+                sub = tomlkit.table()
+                _fill_table(sub, item)
+                array.append(sub)
+            table.add(name, array)
+
+
+def parse_override(assignment: str) -> tuple[str, Any]:
+    """Split ``KEY=VALUE`` and read VALUE as a TOML value, or as text if it is not one."""
+    key, sep, text = assignment.partition("=")
+    key = key.strip()
+    if not sep or not key:
+        raise ParameterError(f"--set {assignment!r}: expected KEY=VALUE")
+    try:
+        value = tomllib.loads(f"v = {text.strip()}")["v"]
+    except tomllib.TOMLDecodeError:
+        value = text.strip()
+    return key, value
+
+
+def apply_override(data: dict, cls: type, key: str, value: Any) -> None:
+    """Set dotted ``key`` in the nested mapping ``data`` after checking it exists in ``cls``."""
+    known = dotted_keys(cls)
+    if key not in known:
+        close = [k for k in known if k.split(".")[-1] == key.split(".")[-1]]
+        hint = f"; did you mean {' or '.join(close)}?" if close else "; see 'exubrush case'"
+        raise ParameterError(f"--set {key}: unknown parameter{hint}")
+    *parents, leaf = key.split(".")
+    table = data
+    for part in parents:
+        table = table.setdefault(part, {})
+    table[leaf] = value

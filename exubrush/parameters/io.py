@@ -1,0 +1,40 @@
+"""Load a case by name or from a TOML file, with ``KEY=VALUE`` overrides."""
+
+from __future__ import annotations
+
+import tomllib
+from pathlib import Path
+
+from exubrush.parameters.case import BUILT_IN_CASES, Case
+from exubrush.parameters.fields import (
+    ParameterError,
+    apply_override,
+    build,
+    parse_override,
+    to_plain,
+)
+
+
+def case_data(case: str) -> dict:
+    """The nested mapping of a built-in case name or a TOML case file."""
+    if case in BUILT_IN_CASES:
+        return to_plain(BUILT_IN_CASES[case]())
+    path = Path(case)
+    if path.suffix.lower() != ".toml" or not path.is_file():
+        raise ParameterError(
+            f"unknown case {case!r}: use {', '.join(BUILT_IN_CASES)} or the path of a TOML "
+            "case file (see 'exubrush case orthogonal')"
+        )
+    try:
+        return tomllib.loads(path.read_text())
+    except tomllib.TOMLDecodeError as err:
+        raise ParameterError(f"{path}: not valid TOML ({err})") from None
+
+
+def load_case(case: str, overrides: list[str] | tuple[str, ...] = ()) -> Case:
+    """Build a validated :class:`Case` from a name or file and ``KEY=VALUE`` overrides."""
+    data = case_data(case)
+    for assignment in overrides:
+        key, value = parse_override(assignment)
+        apply_override(data, Case, key, value)
+    return build(Case, data)

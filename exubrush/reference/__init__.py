@@ -1,0 +1,1 @@
+"""Exact reference solutions computed by exubrush itself."""

@@ -1,0 +1,129 @@
+"""Results of a brushing run: unit-labelled time series, files on disk, the force plot.
+
+Sign conventions (what load cells between slider and head read, with the head's own
+inertia removed): ``normal_force`` is positive when the head presses on the surface;
+``tangential_force`` is the force the head exerts on the surface along the +slide axis
+(positive while the head moves forward and drags its bristles); ``friction_coefficient`` is
+|F_t| / F_n, left empty where F_n is below 1 µN (no contact: the ratio is undefined).
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import os
+import tempfile
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+NO_CONTACT_FORCE = 1e-6  # N; below this the head does not touch and μ_eff is undefined
+
+CSV_COLUMNS = (
+    ("time", "s"),
+    ("slider_position", "mm"),
+    ("travelled_distance", "mm"),
+    ("normal_force", "N"),
+    ("tangential_force", "N"),
+    ("friction_coefficient", "-"),
+    ("head_height", "mm"),
+)
+
+
+@dataclass
+class Results:
+    """Time series of one run (units in :data:`CSV_COLUMNS`) plus metadata.
+
+    ``shapes`` holds the bristle centreline nodes: ``shape_time`` [s] of shape (n_t,) and
+    ``shape_nodes`` [mm] of shape (n_t, n_bristles, n_nodes + 1, 3), root first, head frame
+    fixed to the surface.
+    """
+
+    time: np.ndarray
+    slider_position: np.ndarray
+    normal_force: np.ndarray
+    tangential_force: np.ndarray
+    head_height: np.ndarray
+    shape_time: np.ndarray
+    shape_nodes: np.ndarray
+    metadata: dict = field(default_factory=dict)
+
+    @property
+    def travelled_distance(self) -> np.ndarray:
+        """Cumulative slide path Σ|Δs| [mm]."""
+        return np.concatenate([[0.0], np.cumsum(np.abs(np.diff(self.slider_position)))])
+
+    @property
+    def friction_coefficient(self) -> np.ndarray:
+        """|F_t| / F_n [-], NaN where F_n < 1 µN (undefined; written as an empty cell)."""
+        ratio = np.full_like(self.normal_force, np.nan)
+        touching = self.normal_force > NO_CONTACT_FORCE
+        ratio[touching] = np.abs(self.tangential_force[touching]) / self.normal_force[touching]
+        return ratio
+
+    def columns(self) -> dict[str, np.ndarray]:
+        """All CSV columns by their header (name [unit])."""
+        values = {
+            "time": self.time,
+            "slider_position": self.slider_position,
+            "travelled_distance": self.travelled_distance,
+            "normal_force": self.normal_force,
+            "tangential_force": self.tangential_force,
+            "friction_coefficient": self.friction_coefficient,
+            "head_height": self.head_height,
+        }
+        return {f"{name} [{unit}]": values[name] for name, unit in CSV_COLUMNS}
+
+    def save(self, directory: str | Path) -> Path:
+        """Write forces.csv, run.json, shapes.npz and forces.png into ``directory``.
+
+        Each file is written to a temporary file first and renamed, so a file on disk is
+        either complete or absent.
+        """
+        directory = Path(directory)
+        directory.mkdir(parents=True, exist_ok=True)
+        columns = self.columns()
+        with _atomic(directory / "forces.csv", "w", newline="") as handle:
+            writer = csv.writer(handle)
+            writer.writerow(columns)
+            for row in zip(*columns.values(), strict=True):
+                writer.writerow(["" if np.isnan(v) else f"{v:.9g}" for v in row])
+        with _atomic(directory / "shapes.npz", "wb") as handle:
+            np.savez_compressed(handle, time=self.shape_time, nodes=self.shape_nodes)
+        with _atomic(directory / "run.json", "w") as handle:
+            json.dump(self.metadata, handle, indent=2, default=_json_default)
+        from exubrush.plotting import plot_forces
+
+        with _atomic(directory / "forces.png", "wb") as handle:
+            plot_forces(self, handle)
+        return directory
+
+
+def _json_default(value):
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    if isinstance(value, np.generic):
+        return value.item()
+    raise TypeError(f"cannot write {type(value).__name__} to JSON")
+
+
+class _atomic:
+    """Open a temporary file beside ``path`` and rename it onto ``path`` on success."""
+
+    def __init__(self, path: Path, mode: str, **kwargs):
+        self.path, self.mode, self.kwargs = path, mode, kwargs
+
+    def __enter__(self):
+        fd, self.temporary = tempfile.mkstemp(dir=self.path.parent, prefix=f".{self.path.name}.")
+        self.handle = os.fdopen(fd, self.mode, **self.kwargs)
+        return self.handle
+
+    def __exit__(self, exc_type, exc, tb):
+        self.handle.close()
+        if exc_type is None:
+            os.chmod(self.temporary, 0o644)
+            os.replace(self.temporary, self.path)
+        else:
+            os.unlink(self.temporary)
+        return False

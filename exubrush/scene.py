@@ -1,0 +1,167 @@
+"""Assemble a brushing case into an Exudyn system.
+
+Contents: a rigid handle whose six coordinates are prescribed by coordinate constraints
+(the drive; its reaction is what the load cells read), the bristles (DFM or PRB) clamped
+to it, a contact connector for each tip that can reach the plane, and sensors for the
+drive reactions and the bristle nodes.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import exudyn as exu
+import exudyn.itemInterface as eii
+import numpy as np
+from exudyn.rigidBodyUtilities import InertiaCuboid
+
+from exubrush.contact.exudyn_contact import add_tip_contact, contact_user_function
+from exubrush.models.dfm import add_dfm_bristle
+from exubrush.models.geometry import BristleGeometry, head_bristles
+from exubrush.models.howell import howell_parameters
+from exubrush.models.prb import add_prb_bristle
+from exubrush.motion import HeadMotion, SineSlide, read_slide_csv
+from exubrush.parameters.case import Case
+
+# the handle is a stiff block whose mass only enters the drive reaction, from which the
+# exact inertia force m·a of the prescribed motion is removed again (exubrush.results)
+HANDLE_SIZE = (20.0, 8.0, 3.0)  # mm
+HANDLE_DENSITY = 1.2e-9  # t/mm³ (acrylic-like)
+
+SLIDE_AXES = {"orthogonal": np.array([0.0, 1.0, 0.0]), "parallel": np.array([1.0, 0.0, 0.0])}
+
+
+class SceneError(ValueError):
+    """The case cannot be turned into a meaningful model (e.g. no bristle reaches)."""
+
+
+def prb_parameters(case: Case) -> tuple[float, float]:
+    """(γ, K_Θ) for the PRB model: Howell's table at n = 1/μ_d, or the explicit values."""
+    if case.model.prb_parameters == "explicit":
+        return case.model.prb_gamma, case.model.prb_stiffness_coefficient
+    mu = case.contact.dynamic_friction
+    if mu <= 0.0:
+        raise SceneError("contact.dynamic_friction is 0, so n = 1/mu is infinite; "
+                         "set model.prb_parameters = 'explicit'")
+    return howell_parameters(1.0 / mu)
+
+
+def head_motion(case: Case, bristles: list[BristleGeometry]) -> tuple[HeadMotion, float]:
+    """The head's motion and the initial height of the roots' surface above the plane [mm]."""
+    m = case.motion
+    lowest = min(b.lowest_reach for b in bristles)
+    start_height = m.approach_clearance - lowest
+    if start_height <= m.interaction_distance:
+        raise SceneError(
+            f"motion.interaction_distance ({m.interaction_distance:g} mm) is not below the "
+            f"start height of the roots ({start_height:g} mm): no bristle would touch; "
+            "reduce it below the bristle length plus tip radius"
+        )
+    slide = read_slide_csv(m.csv_file) if m.profile == "csv" else SineSlide(
+        m.amplitude, m.period, m.periods
+    )
+    motion = HeadMotion(
+        approach_distance=start_height - m.interaction_distance,
+        approach_duration=m.approach_duration,
+        hold_duration=m.hold_duration,
+        slide=slide,
+    )
+    return motion, start_height
+
+
+@dataclass
+class Scene:
+    """An assembled Exudyn system and the indices needed to read it."""
+
+    system_container: exu.SystemContainer
+    mbs: exu.MainSystem
+    case: Case
+    motion: HeadMotion
+    slide_axis: np.ndarray
+    start_height: float
+    handle_mass: float
+    bristles: list[BristleGeometry]
+    drive_sensors: list = field(default_factory=list)
+    node_sensors: list = field(default_factory=list)
+    contacts: list = field(default_factory=list)
+    keep_alive: list = field(default_factory=list)
+
+    def handle_offset(self, t: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Handle displacement [mm], velocity [mm/s], acceleration [mm/s²] from its start."""
+        s, v, a = self.motion.sliding(t)
+        z, vz, az = self.motion.descent(t)
+        down = np.array([0.0, 0.0, -1.0])
+        return (s * self.slide_axis + z * down, v * self.slide_axis + vz * down,
+                a * self.slide_axis + az * down)
+
+
+def _add_drive(scene: Scene, handle_node) -> None:
+    mbs = scene.mbs
+    ground_node = mbs.AddNode(eii.NodePointGround())
+    ground_marker = mbs.AddMarker(eii.MarkerNodeCoordinate(nodeNumber=ground_node, coordinate=0))
+    for axis in range(6):
+        marker = mbs.AddMarker(eii.MarkerNodeCoordinate(nodeNumber=handle_node, coordinate=axis))
+        offset_function = 0
+        if axis < 3:
+            def offset_function(mbs, t, itemNumber, lOffset, axis=axis):
+                return float(scene.handle_offset(t)[0][axis])
+        constraint = mbs.AddObject(
+            eii.ObjectConnectorCoordinate(
+                markerNumbers=[ground_marker, marker],
+                offsetUserFunction=offset_function,
+                visualization=eii.VObjectConnectorCoordinate(show=False),
+            )
+        )
+        if axis < 3:
+            scene.drive_sensors.append(
+                mbs.AddSensor(eii.SensorObject(objectNumber=constraint, storeInternal=True,
+                                               writeToFile=False,
+                                               outputVariableType=exu.OutputVariableType.Force))
+            )
+
+
+def build_scene(case: Case) -> Scene:
+    """Assemble ``case`` into a ready-to-solve Exudyn system."""
+    bristles = head_bristles(case.head)
+    motion, start_height = head_motion(case, bristles)
+    SC = exu.SystemContainer()
+    mbs = SC.AddSystem()
+    ground = mbs.AddObject(eii.ObjectGround())
+    handle_inertia = InertiaCuboid(HANDLE_DENSITY, HANDLE_SIZE)
+    handle = mbs.CreateRigidBody(
+        referencePosition=[0.0, 0.0, start_height], inertia=handle_inertia,
+        nodeType=exu.NodeType.RotationRxyz, gravity=[0.0, 0.0, 0.0], show=False,
+        returnDict=True,
+    )
+    scene = Scene(SC, mbs, case, motion, SLIDE_AXES[case.motion.direction], start_height,
+                  handle_inertia.Mass(), bristles)
+    _add_drive(scene, handle["nodeNumber"])
+    plane = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=ground, localPosition=[0, 0, 0]))
+    laws = {}
+    origin = (0.0, 0.0, start_height)
+    material = case.head.material
+    if case.model.kind == "prb":
+        gamma, k_theta = prb_parameters(case)
+    for bristle in bristles:
+        if case.model.kind == "dfm":
+            items = add_dfm_bristle(mbs, handle["bodyNumber"], bristle, material,
+                                    case.model.segments, origin)
+        else:
+            items = add_prb_bristle(mbs, handle["bodyNumber"], bristle, material, gamma, k_theta,
+                                    origin)
+        scene.node_sensors.append([
+            mbs.AddSensor(eii.SensorNode(nodeNumber=n, storeInternal=True, writeToFile=False,
+                                         outputVariableType=exu.OutputVariableType.Position))
+            for n in items.nodes
+        ])
+        # coarse reach test: a tip can touch only if the roots come closer than l + r
+        if case.motion.interaction_distance < bristle.length + bristle.tip_radius:
+            if bristle.tip_radius not in laws:
+                laws[bristle.tip_radius] = contact_user_function(
+                    mbs, case.contact, bristle.tip_radius, case.solver.user_functions
+                )
+            scene.contacts.append(add_tip_contact(mbs, plane, items.tip_body,
+                                                  laws[bristle.tip_radius]))
+    scene.keep_alive.extend(laws.values())
+    mbs.Assemble()
+    return scene

@@ -1,0 +1,45 @@
+"""The one place where Exudyn's SimulationSettings are filled."""
+
+from __future__ import annotations
+
+import exudyn as exu
+
+from exubrush.parameters.case import Solver
+
+
+def quiet(settings: exu.SimulationSettings) -> exu.SimulationSettings:
+    """Switch off Exudyn's console output, solution files and graphics."""
+    settings.timeIntegration.verboseMode = 0
+    settings.staticSolver.verboseMode = 0
+    settings.solution.file.write = False
+    settings.solution.sensors.writePeriod = 1e30
+    settings.displayComputationTime = False
+    settings.displayStatistics = False
+    return settings
+
+
+def dynamic_settings(solver: Solver, end_time: float, output_interval: float):
+    """Implicit generalized-α settings for a brushing run.
+
+    Choices (EXUDYN_NOTES.md, verified in this project): spectral radius 0 by default,
+    modified Newton, automatic step reduction down to ``minimum_step_size`` (snap-through
+    at stroke reversals needs tiny steps), ``adaptInitialResidual`` off (with it on, a
+    diverged first iteration resets the reference residual and a wrong step can pass), and
+    no solution-norm bound (a small one caused false failures at snap-through).
+    """
+    settings = quiet(exu.SimulationSettings())
+    ti = settings.timeIntegration
+    ti.endTime = end_time
+    ti.numberOfSteps = max(1, round(end_time / solver.step_size))
+    ti.minimumStepSize = solver.minimum_step_size
+    ti.automaticStepSize = True
+    ti.adaptiveStep = True
+    ti.generalizedAlpha.spectralRadius = solver.spectral_radius
+    ti.generalizedAlpha.computeInitialAccelerations = True
+    ti.newton.useModifiedNewton = solver.modified_newton == "yes"
+    ti.newton.relativeTolerance = solver.relative_tolerance
+    ti.newton.absoluteTolerance = solver.absolute_tolerance
+    ti.newton.adaptInitialResidual = False
+    settings.solution.sensors.writePeriod = output_interval
+    settings.parallel.numberOfThreads = 1
+    return settings
