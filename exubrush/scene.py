@@ -79,7 +79,6 @@ class Scene:
     motion: HeadMotion
     slide_axis: np.ndarray
     start_height: float
-    handle_mass: float
     bristles: list[BristleGeometry]
     drive_sensors: list = field(default_factory=list)
     node_sensors: list = field(default_factory=list)
@@ -120,10 +119,18 @@ def _add_drive(scene: Scene, handle_node) -> None:
             )
 
 
-def build_scene(case: Case) -> Scene:
-    """Assemble ``case`` into a ready-to-solve Exudyn system."""
-    bristles = head_bristles(case.head)
-    motion, start_height = head_motion(case, bristles)
+def build_scene(case: Case, selection: list[int] | None = None) -> Scene:
+    """Assemble ``case`` into a ready-to-solve Exudyn system.
+
+    Parameters
+    ----------
+    selection : list of int, optional
+        Indices of the bristles to include (default: all). The motion is always that of
+        the whole head, so a head split into groups moves identically in every group.
+    """
+    all_bristles = head_bristles(case.head)
+    motion, start_height = head_motion(case, all_bristles)
+    bristles = all_bristles if selection is None else [all_bristles[i] for i in selection]
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
     ground = mbs.AddObject(eii.ObjectGround())
@@ -134,7 +141,7 @@ def build_scene(case: Case) -> Scene:
         returnDict=True,
     )
     scene = Scene(SC, mbs, case, motion, SLIDE_AXES[case.motion.direction], start_height,
-                  handle_inertia.Mass(), bristles)
+                  bristles)
     _add_drive(scene, handle["nodeNumber"])
     plane = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=ground, localPosition=[0, 0, 0]))
     laws = {}

@@ -1,5 +1,12 @@
 """Compose, run and read out a brushing simulation.
 
+With the head's motion prescribed and no bristle-bristle contact, the bristles do not
+interact: the head force is the sum of the bristles' forces. By default
+(``solver.partition = "per-bristle"``) every bristle is therefore solved as its own small
+Exudyn system, in parallel processes (Exudyn's threads do not mix with Python user
+functions), and the drive reactions are summed. ``"coupled"`` solves the whole head as one
+system, which the same forces must come out of (tests/integration/test_partition.py).
+
 >>> from exubrush.parameters.case import orthogonal_case
 >>> from exubrush.simulation import simulate
 >>> results = simulate(orthogonal_case())          # doctest: +SKIP
@@ -8,27 +15,33 @@
 
 from __future__ import annotations
 
+import multiprocessing
+import os
 import platform
+import queue
 import time
+from concurrent.futures import ProcessPoolExecutor
 
 import exudyn as exu
 import numpy as np
 from tqdm import tqdm
 
 import exubrush
+from exubrush.models.geometry import head_bristles
 from exubrush.parameters.case import Case
 from exubrush.parameters.fields import to_plain
 from exubrush.results import Results
-from exubrush.scene import Scene, build_scene, prb_parameters
+from exubrush.scene import (
+    HANDLE_DENSITY,
+    HANDLE_SIZE,
+    SLIDE_AXES,
+    build_scene,
+    head_motion,
+    prb_parameters,
+)
 from exubrush.solver import dynamic_settings
 
-
-class SimulationError(RuntimeError):
-    """The solver stopped before the end time."""
-
-
-def _sensor_history(mbs, sensor) -> np.ndarray:
-    return np.asarray(mbs.GetSensorStoredData(sensor))
+PROGRESS_STEP = 0.05  # s of simulated time between progress reports of a group
 
 
 def _solver_statistics(mbs) -> dict:
@@ -44,97 +57,28 @@ def _solver_statistics(mbs) -> dict:
     }
 
 
-def collect(scene: Scene, wall_time: float, completed: bool, message: str = "") -> Results:
-    """Read the sensors of a solved scene into :class:`Results`."""
-    mbs = scene.mbs
-    drive = [_sensor_history(mbs, s) for s in scene.drive_sensors]
-    n = min(len(d) for d in drive)
-    t = drive[0][:n, 0]
-    reaction = np.column_stack([d[:n, 1] for d in drive])
-    offsets = [scene.handle_offset(ti) for ti in t]
-    acceleration = np.array([o[2] for o in offsets])
-    # drive reaction = force of the slider on the handle, sign as the coordinate constraint's
-    # multiplier; the head's force on the surface is that minus the handle's own m·a
-    head_force = -reaction - scene.handle_mass * acceleration
-    slide = np.array([scene.motion.sliding(ti)[0] for ti in t])
-    height = scene.start_height + np.array([o[0][2] for o in offsets])
-    shape_time, shape_nodes = _shapes(scene, t)
-    metadata = {
-        "case": scene.case.name,
-        "model": scene.case.model.kind,
-        "parameters": to_plain(scene.case),
-        "derived": _derived(scene),
-        "versions": {
-            "exubrush": exubrush.__version__,
-            "exudyn": exu.__version__,
-            "python": platform.python_version(),
-        },
-        "solver_statistics": _solver_statistics(mbs),
-        "wall_time_s": wall_time,
-        "simulated_time_s": float(t[-1]) if n else 0.0,
-        "completed": completed,
-        "message": message,
-        "data_origin": "exubrush model output (simulation, not measurement)",
-    }
-    return Results(
-        time=t,
-        slider_position=slide,
-        normal_force=-head_force[:, 2],
-        tangential_force=head_force @ scene.slide_axis,
-        head_height=height,
-        shape_time=shape_time,
-        shape_nodes=shape_nodes,
-        metadata=metadata,
-    )
+def solve_group(case: Case, selection: list[int] | None, progress_queue=None) -> dict:
+    """Solve the bristles ``selection`` of ``case`` as one Exudyn system.
 
-
-def _derived(scene: Scene) -> dict:
-    info = {
-        "bristles": len(scene.bristles),
-        "contact_elements": len(scene.contacts),
-        "approach_distance_mm": scene.motion.approach_distance,
-        "slide_start_s": scene.motion.slide_start,
-        "end_time_s": scene.motion.end_time,
-    }
-    if scene.case.model.kind == "prb":
-        info["prb_gamma"], info["prb_stiffness_coefficient"] = prb_parameters(scene.case)
-    return info
-
-
-def _shapes(scene: Scene, force_time: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Bristle nodes at the shape interval, in a frame fixed to the surface [mm]."""
-    stride = max(1, round(scene.case.output.shape_interval / scene.case.output.interval))
-    histories = [[_sensor_history(scene.mbs, s) for s in sensors]
-                 for sensors in scene.node_sensors]
-    n = min(len(force_time), *(len(h) for nodes in histories for h in nodes))
-    rows = np.arange(0, n, stride)
-    time_points = force_time[rows]
-    roots = np.array([b.root for b in scene.bristles])
-    handle = np.array([scene.handle_offset(ti)[0] for ti in time_points])
-    handle[:, 2] += scene.start_height
-    nodes = np.empty((len(rows), len(scene.bristles), len(histories[0]) + 1, 3))
-    nodes[:, :, 0, :] = handle[:, None, :] + roots[None, :, :]
-    for b, bristle_nodes in enumerate(histories):
-        for k, history in enumerate(bristle_nodes):
-            nodes[:, b, k + 1, :] = history[rows, 1:4]
-    return time_points, nodes
-
-
-def simulate(case: Case, progress: bool = True) -> Results:
-    """Build and solve ``case``; return its results (marked incomplete if the solver stopped)."""
-    scene = build_scene(case)
+    Returns
+    -------
+    dict
+        ``time`` (n,) [s]; ``reaction`` (n, 3) drive force on the handle [N]; ``nodes``
+        (n, bristles, nodes, 3) node positions [mm]; ``statistics``; ``completed``;
+        ``message``; ``wall_time`` [s]; ``contacts`` (number of contact elements).
+    """
+    scene = build_scene(case, selection)
     end_time = scene.motion.end_time
     settings = dynamic_settings(case.solver, end_time, case.output.interval)
-    bar = tqdm(total=round(end_time, 3), unit="s", desc=f"{case.name} {case.model.kind}",
-               disable=not progress, bar_format="{l_bar}{bar}| {n:.2f}/{total:.2f} s simulated "
-               "[{elapsed}<{remaining}]")
+    reported = [0.0]
 
-    def advance_bar(mbs, t):
-        if t - bar.n >= 0.01 or t >= end_time:
-            bar.update(round(t, 3) - bar.n)
+    def report(mbs, t):
+        if progress_queue is not None and t - reported[0] >= PROGRESS_STEP:
+            progress_queue.put(t - reported[0])
+            reported[0] = t
         return True
 
-    scene.mbs.SetPreStepUserFunction(advance_bar)
+    scene.mbs.SetPreStepUserFunction(report)
     start = time.perf_counter()
     completed, message = True, ""
     try:
@@ -142,8 +86,143 @@ def simulate(case: Case, progress: bool = True) -> Results:
     except (exu.SolverError, RuntimeError) as err:
         completed, message = False, str(err)
     wall = time.perf_counter() - start
+    if progress_queue is not None:
+        progress_queue.put(end_time - reported[0])
+    drive = [np.asarray(scene.mbs.GetSensorStoredData(s)) for s in scene.drive_sensors]
+    histories = [[np.asarray(scene.mbs.GetSensorStoredData(s)) for s in sensors]
+                 for sensors in scene.node_sensors]
+    n = min(len(h) for h in [*drive, *(h for nodes in histories for h in nodes)])
+    nodes = np.array([[h[:n, 1:4] for h in bristle] for bristle in histories])
+    return {
+        "time": drive[0][:n, 0],
+        "reaction": np.column_stack([d[:n, 1] for d in drive]),
+        "nodes": nodes.transpose(2, 0, 1, 3),
+        "statistics": _solver_statistics(scene.mbs),
+        "completed": completed and n > 0 and drive[0][n - 1, 0] >= end_time - 1e-9,
+        "message": message,
+        "wall_time": wall,
+        "contacts": len(scene.contacts),
+    }
+
+
+def _groups(case: Case, count: int) -> list[list[int] | None]:
+    if case.solver.partition == "coupled":
+        return [None]
+    return [[i] for i in range(count)]
+
+
+def _run_groups(case: Case, groups, workers: int, progress: bool, total: float) -> list[dict]:
+    bar = tqdm(total=round(total, 2), disable=not progress, desc=f"{case.name} {case.model.kind}",
+               bar_format="{l_bar}{bar}| {n:.2f}/{total:.2f} s simulated [{elapsed}<{remaining}]")
+    share = 1.0 / len(groups)
+    if workers <= 1 or len(groups) == 1:
+        local = queue.SimpleQueue()
+        outputs = []
+        for group in groups:
+            outputs.append(solve_group(case, group, local))
+            while not local.empty():
+                bar.update(local.get() * share)
+        bar.close()
+        return outputs
+    context = multiprocessing.get_context("spawn")
+    with context.Manager() as manager, ProcessPoolExecutor(workers, mp_context=context) as pool:
+        updates = manager.Queue()
+        futures = [pool.submit(solve_group, case, group, updates) for group in groups]
+        while not all(f.done() for f in futures):
+            try:
+                bar.update(updates.get(timeout=0.2) * share)
+            except queue.Empty:
+                pass
+        outputs = [f.result() for f in futures]
     bar.close()
-    results = collect(scene, wall, completed, message)
-    if completed and results.metadata["simulated_time_s"] < end_time - 1e-6:
-        results.metadata["completed"] = False
-    return results
+    return outputs
+
+
+def simulate(case: Case, progress: bool = True, workers: int | None = None) -> Results:
+    """Build and solve ``case``; return its results (marked incomplete if a solve stopped).
+
+    Parameters
+    ----------
+    progress : bool
+        Show a progress bar of the simulated time on standard error.
+    workers : int, optional
+        Processes for per-bristle solves (default: the number of cores).
+    """
+    bristles = head_bristles(case.head)
+    motion, start_height = head_motion(case, bristles)
+    groups = _groups(case, len(bristles))
+    workers = workers or os.cpu_count() or 1
+    start = time.perf_counter()
+    outputs = _run_groups(case, groups, workers, progress, motion.end_time)
+    wall = time.perf_counter() - start
+    n = min(len(o["time"]) for o in outputs)
+    t = outputs[0]["time"][:n]
+    reaction = sum(o["reaction"][:n] for o in outputs)
+    nodes = np.concatenate([o["nodes"][:n] for o in outputs], axis=1)
+    slide_axis = SLIDE_AXES[case.motion.direction]
+    slide = np.array([motion.sliding(ti) for ti in t])
+    descent = np.array([motion.descent(ti) for ti in t])
+    handle_position = slide[:, :1] * slide_axis
+    handle_position[:, 2] += start_height - descent[:, 0]
+    # The drive's reaction is the constraint multiplier: the force the handle's coordinates
+    # exert on the drive. The head's force on the surface is its negative, minus the m·a of
+    # the handle of each group (each group has its own handle).
+    handle_mass = HANDLE_DENSITY * np.prod(HANDLE_SIZE) * len(outputs)
+    acceleration = slide[:, 2:3] * slide_axis
+    acceleration[:, 2] -= descent[:, 2]
+    head_force = -reaction - handle_mass * acceleration
+    completed = all(o["completed"] for o in outputs)
+    messages = sorted({o["message"] for o in outputs if o["message"]})
+    stride = max(1, round(case.output.shape_interval / case.output.interval))
+    rows = np.arange(0, n, stride)
+    roots = np.array([b.root for b in bristles])
+    shape_nodes = np.concatenate(
+        [(handle_position[rows][:, None, :] + roots[None, :, :])[:, :, None, :], nodes[rows]],
+        axis=2,
+    )
+    statistics = {key: sum(o["statistics"].get(key, 0) for o in outputs)
+                  for key in outputs[0]["statistics"]}
+    derived = {
+        "bristles": len(bristles),
+        "contact_elements": sum(o["contacts"] for o in outputs),
+        "partition": case.solver.partition,
+        "systems_solved": len(outputs),
+        "worker_processes": min(workers, len(groups)),
+        "approach_distance_mm": motion.approach_distance,
+        "slide_start_s": motion.slide_start,
+        "end_time_s": motion.end_time,
+    }
+    if case.model.kind == "prb":
+        derived["prb_gamma"], derived["prb_stiffness_coefficient"] = prb_parameters(case)
+    metadata = {
+        "case": case.name,
+        "model": case.model.kind,
+        "parameters": to_plain(case),
+        "derived": derived,
+        "versions": {"exubrush": exubrush.__version__, "exudyn": exu.__version__,
+                     "python": platform.python_version()},
+        "solver_statistics": statistics,
+        "solver_wall_time_s_sum": sum(o["wall_time"] for o in outputs),
+        "wall_time_s": wall,
+        "simulated_time_s": float(t[-1]) if n else 0.0,
+        "completed": completed,
+        "message": "; ".join(messages),
+        "data_origin": "exubrush model output (simulation, not measurement)",
+    }
+    return Results(
+        time=t,
+        slider_position=slide[:, 0],
+        normal_force=-head_force[:, 2],
+        tangential_force=head_force @ slide_axis,
+        head_height=handle_position[:, 2],
+        shape_time=t[rows],
+        shape_nodes=shape_nodes,
+        metadata=metadata,
+    )
+
+
+def run_case(case: str, model: str = "dfm", overrides=(), progress: bool = True) -> Results:
+    """Simulate a built-in case or case file with ``model`` and ``KEY=VALUE`` overrides."""
+    from exubrush.parameters.io import load_case
+
+    return simulate(load_case(case, [f"model.kind='{model}'", *overrides]), progress)

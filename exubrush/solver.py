@@ -13,8 +13,8 @@ def quiet(settings: exu.SimulationSettings) -> exu.SimulationSettings:
     settings.staticSolver.verboseMode = 0
     settings.solution.file.write = False
     settings.solution.sensors.writePeriod = 1e30
-    settings.displayComputationTime = False
-    settings.displayStatistics = False
+    settings.show.computationTime = False
+    settings.show.statistics = False
     return settings
 
 
@@ -41,5 +41,8 @@ def dynamic_settings(solver: Solver, end_time: float, output_interval: float):
     ti.newton.absoluteTolerance = solver.absolute_tolerance
     ti.newton.adaptInitialResidual = False
     settings.solution.sensors.writePeriod = output_interval
+    # a head has thousands of coordinates with a block-sparse Jacobian
+    settings.linearSolver.solverType = exu.LinearSolverType.EigenSparse
+    settings.linearSolver.reuseAnalyzedPattern = True
     settings.parallel.numberOfThreads = 1
     return settings

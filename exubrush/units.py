@@ -73,8 +73,10 @@ def to_internal(text: str | float | int, unit: str) -> float:
 
 
 def format_quantity(value: float, unit: str) -> str:
-    """Write ``value`` (in internal unit ``unit``) as the text a case file uses.
+    """Write ``value`` (in unit ``unit``) as the text a case file uses, e.g. ``"7.5 MPa"``.
 
-    ``repr`` of the float keeps every digit, so writing and reading back is exact.
+    Twelve significant digits: unit conversions leave round-off in the last of the 17
+    digits of a double (1100 kg/m³ would print as 1099.9999999999998), which a case file
+    should not show.
     """
-    return f"{float(value)!r} {unit}"
+    return f"{float(value):.12g} {unit}"

@@ -158,6 +158,12 @@ class Solver:
     absolute_tolerance: float = param(1e-10, "Newton absolute tolerance (residual)", above=0.0)
     modified_newton: str = param("yes", "reuse the Jacobian between steps", "text",
                                  choices=("yes", "no"))
+    partition: str = param(
+        "per-bristle",
+        "per-bristle: each bristle its own system, in parallel processes (bristles do not "
+        "touch each other); coupled: the whole head as one system",
+        "text", choices=("per-bristle", "coupled"),
+    )
     user_functions: str = param(
         "symbolic", "contact law back end: symbolic (C++) or python", "text",
         choices=("symbolic", "python"),

@@ -1,0 +1,58 @@
+"""The command line: a small run writes its files; user mistakes give one line, exit 2."""
+
+import csv
+import json
+import subprocess
+import sys
+import tomllib
+
+import pytest
+
+REQUIRED_COLUMNS = ["time [s]", "slider_position [mm]", "travelled_distance [mm]",
+                    "normal_force [N]", "tangential_force [N]", "friction_coefficient [-]"]
+
+
+def _exubrush(*args):
+    return subprocess.run([sys.executable, "-m", "exubrush", *args], capture_output=True,
+                          text=True, timeout=300)
+
+
+def test_small_run_writes_complete_results(tmp_path):
+    out = tmp_path / "run"
+    done = _exubrush("run", "parallel", "--model", "prb", "--periods", "0.05", "--quiet",
+                     "--set", "head.rows=1", "--set", "head.columns=1", "--out", str(out))
+    assert done.returncode == 0, done.stderr
+    assert f"results in {out}" in done.stdout
+    with open(out / "forces.csv") as handle:
+        rows = list(csv.reader(handle))
+    assert rows[0][:6] == REQUIRED_COLUMNS
+    assert len(rows) > 100
+    meta = json.loads((out / "run.json").read_text())
+    assert meta["completed"] and meta["model"] == "prb"
+    assert {"exubrush", "exudyn", "python"} <= set(meta["versions"])
+    assert meta["parameters"]["motion"]["direction"] == "parallel"
+    assert meta["solver_statistics"]["steps"] > 0 and meta["wall_time_s"] > 0
+    assert (out / "forces.png").stat().st_size > 10_000
+
+
+def test_case_prints_toml_that_runs_back(tmp_path):
+    done = _exubrush("case", "orthogonal")
+    assert done.returncode == 0
+    data = tomllib.loads(done.stdout)
+    assert data["head"]["material"]["youngs_modulus"] == "7.5 MPa"
+
+
+@pytest.mark.parametrize("args, message", [
+    (["run", "diagonal"], "unknown case 'diagonal'"),
+    (["run", "orthogonal", "--set", "head.bristle.length='-2 mm'"], "must be > 0 mm"),
+    (["run", "orthogonal", "--set", "head.material.youngs_modulus=7.5"], "has no unit"),
+    (["run", "orthogonal", "--set", "head.nope=1"], "unknown parameter"),
+    (["run", "orthogonal", "--model", "fem"], "'fem' is not one of"),
+    (["run", "orthogonal", "--set", "motion.interaction_distance='9 mm'"], "no bristle"),
+    (["case", "missing.toml"], "unknown case 'missing.toml'"),
+])
+def test_user_mistakes_give_one_line_and_exit_2(args, message):
+    done = _exubrush(*args)
+    assert done.returncode == 2
+    assert message in done.stderr
+    assert "Traceback" not in done.stderr

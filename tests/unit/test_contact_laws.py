@@ -1,0 +1,105 @@
+"""Contact and friction laws against their formulas (SPEC.md §4)."""
+
+import math
+
+import numpy as np
+import pytest
+
+from exubrush.contact.laws import (
+    ContactLaw,
+    friction_coefficient,
+    normal_force,
+    sphere_plane_force,
+)
+
+LAW = ContactLaw()  # paper table 2
+
+
+def test_defaults_are_the_papers_table_2():
+    assert (LAW.stiffness, LAW.stiffness_exponent, LAW.damping) == (100.0, 1.3, 0.2)
+    assert (LAW.damping_rate_exponent, LAW.damping_depth_exponent) == (1.0, 2.0)
+    assert (LAW.static_friction, LAW.dynamic_friction) == (0.8, 0.76)
+    assert (LAW.static_velocity, LAW.dynamic_velocity) == (1.2, 1.5)
+
+
+def test_normal_force_values():
+    # k δ^1.3 + c δ' δ²: δ = 0.01 mm, δ' = 2 mm/s -> 100·0.01^1.3 + 0.2·2·1e-4
+    expected = 100 * 0.01**1.3 + 0.2 * 2 * 0.01**2
+    assert normal_force(LAW, 0.01, 2.0) == pytest.approx(expected, rel=1e-14)
+    assert normal_force(LAW, 0.01, -2.0) == pytest.approx(100 * 0.01**1.3 - 0.2 * 2 * 1e-4,
+                                                          rel=1e-14)
+
+
+def test_no_force_without_penetration_and_no_pull():
+    assert normal_force(LAW, 0.0, -5.0) == 0.0
+    assert normal_force(LAW, -0.1, 3.0) == 0.0
+    # leaving fast: the damping term exceeds the elastic one, clamped at zero
+    assert normal_force(LAW, 0.001, -1e6) == 0.0
+
+
+def test_unit_conversion_of_the_paper_coefficients():
+    # k = 100 N/mm^1.3 is 100·1000^1.3 N/m^1.3 and c = 0.2 N·s/mm³ is 0.2e9 N·s/m³: the same
+    # force comes out in SI for the same physical state
+    from exubrush.units import to_internal
+
+    k_si = to_internal("100 N/mm^1.3", "N/m^1.3")
+    c_si = to_internal("0.2 N*s/mm^3", "N*s/m^3")
+    assert k_si == pytest.approx(100 * 1000**1.3, rel=1e-12)
+    assert c_si == pytest.approx(0.2e9, rel=1e-12)
+    delta_m, rate_m = 0.05e-3, 3e-3  # 0.05 mm, 3 mm/s
+    force_si = k_si * delta_m**1.3 + c_si * rate_m * delta_m**2
+    assert normal_force(LAW, 0.05, 3.0) == pytest.approx(force_si, rel=1e-12)
+    assert k_si != pytest.approx(100 * 1000)  # not a plain N/mm conversion
+
+
+def test_friction_coefficient_key_values():
+    assert friction_coefficient(LAW, 0.0) == 0.0
+    assert friction_coefficient(LAW, 1.2) == pytest.approx(0.8, abs=1e-15)
+    assert friction_coefficient(LAW, 1.5) == pytest.approx(0.76, abs=1e-15)
+    assert friction_coefficient(LAW, 100.0) == pytest.approx(0.76, abs=1e-15)
+    # odd cubic step from -μ_s at -v_s to μ_s at v_s: slope 1.5 μ_s / v_s at zero
+    assert friction_coefficient(LAW, 1e-6) / 1e-6 == pytest.approx(1.5 * 0.8 / 1.2, rel=1e-5)
+
+
+def test_friction_coefficient_is_continuous_with_continuous_slope():
+    speeds = np.linspace(0.0, 3.0, 30001)
+    mu = np.array([friction_coefficient(LAW, v) for v in speeds])
+    h = speeds[1] - speeds[0]
+    # largest jump between neighbours bounded by max slope · h (slope <= 1.5 μ_s/v_s = 1)
+    assert np.max(np.abs(np.diff(mu))) <= 1.0 * h * 1.0001
+    slope = np.diff(mu) / h
+    # slope changes by at most (max curvature · h); a kink would show a jump of order 1
+    assert np.max(np.abs(np.diff(slope))) < 0.01
+    assert np.all(np.diff(mu[speeds <= 1.2]) >= 0)  # rising to μ_s
+
+
+def test_sphere_on_plane_force_and_moment():
+    r = 0.4
+    centre, velocity, omega = [0.0, 0.0, 0.35], [3.0, 0.0, -1.0], [0.0, 0.0, 0.0]
+    f = sphere_plane_force(LAW, r, centre, velocity, omega)
+    fn = normal_force(LAW, 0.05, 1.0)
+    assert f[2] == pytest.approx(fn, rel=1e-14)
+    assert f[0] == pytest.approx(-0.76 * fn, rel=1e-9)  # opposes +x slip, μ_d at 3 mm/s
+    assert f[1] == 0.0
+    # moment of the friction force at (0, 0, -r): (-r e_z) × (f_x, 0, 0) = (0, -r f_x, 0)
+    assert f[3] == pytest.approx(0.0, abs=1e-15)
+    assert f[4] == pytest.approx(-r * f[0], rel=1e-14)
+
+
+def test_rolling_without_slip_gives_no_friction():
+    # v_x = 2, ω_y = 5 (= v/r): the contact point is at rest
+    r = 0.4
+    f = sphere_plane_force(LAW, r, [0, 0, 0.38], [2.0, 0.0, 0.0], [0.0, 2.0 / r, 0.0])
+    assert abs(f[0]) < 1e-6 * f[2]
+
+
+def test_friction_opposes_slip_in_any_direction():
+    for angle in np.linspace(0, 2 * math.pi, 13):
+        v = [2 * math.cos(angle), 2 * math.sin(angle), 0.0]
+        f = sphere_plane_force(LAW, 0.4, [0, 0, 0.39], v, [0, 0, 0])
+        assert f[0] * v[0] + f[1] * v[1] < 0
+
+
+def test_law_checks_velocity_order():
+    with pytest.raises(ValueError, match="static_velocity"):
+        ContactLaw(static_velocity=2.0, dynamic_velocity=1.0).check()

@@ -1,0 +1,67 @@
+"""Prescribed head motion: values and consistency of derivatives."""
+
+import math
+
+import numpy as np
+import pytest
+
+from exubrush.motion import HeadMotion, SineSlide, TabulatedSlide, read_slide_csv, smooth_step
+
+
+def _finite_difference(f, t, h=1e-5):
+    return (f(t + h) - f(t - h)) / (2 * h)
+
+
+def test_paper_motions_reach_7_85_mm_per_s():
+    orthogonal, parallel = SineSlide(15.0, 12.0, 1), SineSlide(30.0, 24.0, 1)
+    assert orthogonal.evaluate(0.0)[1] == pytest.approx(15 * math.pi / 6, rel=1e-14)
+    assert parallel.evaluate(0.0)[1] == pytest.approx(30 * math.pi / 12, rel=1e-14)
+    assert orthogonal.evaluate(0.0)[1] == pytest.approx(7.85, abs=5e-3)  # printed digits
+
+
+@pytest.mark.parametrize("tau", [0.1, 0.37, 0.5, 0.9])
+def test_smooth_step_derivatives(tau):
+    s, ds, dds = smooth_step(tau)
+    # central differences, h = 1e-5: error O(h²) ~ 1e-9 relative
+    assert ds == pytest.approx(_finite_difference(lambda x: smooth_step(x)[0], tau), rel=1e-6)
+    assert dds == pytest.approx(_finite_difference(lambda x: smooth_step(x)[1], tau), rel=1e-6,
+                                abs=1e-8)
+    assert smooth_step(0) == (0, 0, 0) and smooth_step(1) == (1, 0, 0)
+
+
+def test_head_motion_phases():
+    motion = HeadMotion(1.5, 1.0, 0.2, SineSlide(15.0, 12.0, 2.0))
+    assert motion.slide_start == pytest.approx(1.2)
+    assert motion.end_time == pytest.approx(25.2)
+    assert motion.descent(1.0)[0] == pytest.approx(1.5)
+    assert motion.sliding(1.2) == (0.0, 0.0, 0.0)
+    assert motion.sliding(1.2 + 3.0)[0] == pytest.approx(15.0, rel=1e-12)
+
+
+def test_tabulated_slide_reproduces_a_sine():
+    t = np.linspace(0, 12, 1201)
+    table = TabulatedSlide(t, 15 * np.sin(np.pi * t / 6))
+    # cubic spline on 0.01 s samples: interpolation error ~ h⁴ f''''/384 ≈ 1e-10 mm
+    assert table.evaluate(3.005)[0] == pytest.approx(15 * np.sin(np.pi * 3.005 / 6), abs=1e-6)
+    assert table.evaluate(0.5)[1] == pytest.approx(15 * np.pi / 6 * np.cos(np.pi / 12), rel=1e-4)
+
+
+def test_slide_csv_with_units(tmp_path):
+    path = tmp_path / "slide.csv"
+    path.write_text("time [ms],slider_position [m]\n0,0\n500,0.001\n1000,0.004\n")
+    table = read_slide_csv(path)
+    assert table.duration == pytest.approx(1.0)
+    assert table.evaluate(1.0)[0] == pytest.approx(4.0)
+
+
+@pytest.mark.parametrize("text, message", [
+    ("time,slider_position [mm]\n0,0\n1,1\n", "no unit"),
+    ("time [s],position [mm]\n0,0\n1,1\n", "no column 'slider_position"),
+    ("time [s],slider_position [mm]\n0,0\n1,x\n", "non-numeric"),
+    ("time [s],slider_position [mm]\n0,0\n0,1\n", "increase strictly"),
+])
+def test_bad_slide_csv_is_refused(tmp_path, text, message):
+    path = tmp_path / "slide.csv"
+    path.write_text(text)
+    with pytest.raises(ValueError, match=message):
+        read_slide_csv(path)
