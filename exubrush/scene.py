@@ -69,6 +69,22 @@ def head_motion(case: Case, bristles: list[BristleGeometry]) -> tuple[HeadMotion
     return motion, start_height
 
 
+def friction_window(case: Case, motion: HeadMotion) -> tuple[float, float] | None:
+    """When friction is blended in, or None if it acts from the start (motion.approach_friction).
+
+    "off" switches friction on during the hold after the approach; "auto" does so for the
+    PRB model only: a straight PRB link whose tip sticks cannot buckle as a real bristle
+    does, and a measured single bristle jammed at 126 N instead of buckling at ~0.1 N.
+    """
+    mode = case.motion.approach_friction
+    if mode == "on" or (mode == "auto" and case.model.kind == "dfm"):
+        return None
+    if case.motion.hold_duration <= 0.0:
+        raise SceneError("motion.approach_friction off (or auto with PRB) blends friction in "
+                         "during the hold: set motion.hold_duration > 0")
+    return (motion.approach_duration, motion.slide_start)
+
+
 @dataclass
 class Scene:
     """An assembled Exudyn system and the indices needed to read it."""
@@ -165,7 +181,8 @@ def build_scene(case: Case, selection: list[int] | None = None) -> Scene:
         if case.motion.interaction_distance < bristle.length + bristle.tip_radius:
             if bristle.tip_radius not in laws:
                 laws[bristle.tip_radius] = contact_user_function(
-                    mbs, case.contact, bristle.tip_radius, case.solver.user_functions
+                    mbs, case.contact, bristle.tip_radius, case.solver.user_functions,
+                    friction_window(case, motion),
                 )
             scene.contacts.append(add_tip_contact(mbs, plane, items.tip_body,
                                                   laws[bristle.tip_radius]))

@@ -16,13 +16,15 @@ import exudyn as exu
 import exudyn.itemInterface as eii
 from exudyn.advancedUtilities import CreateSymbolicUserFunction
 
-from exubrush.contact.laws import FLOAT_MATH, ContactLaw, sphere_plane_force
+from exubrush.contact.laws import FLOAT_MATH, ContactLaw, cubic_step, sphere_plane_force
 
 CONNECTOR_TYPE = "ObjectConnectorRigidBodySpringDamper"
 USER_FUNCTION_NAME = "springForceTorqueUserFunction"
 
 
-def contact_user_function(mbs, law: ContactLaw, radius: float, backend: str = "symbolic"):
+def contact_user_function(
+    mbs, law: ContactLaw, radius: float, backend: str = "symbolic", friction_window=None
+):
     """Return an Exudyn spring-force-torque user function for one sphere radius.
 
     Parameters
@@ -30,13 +32,19 @@ def contact_user_function(mbs, law: ContactLaw, radius: float, backend: str = "s
     backend : {"symbolic", "python"}
         ``"symbolic"`` records the law into a C++ expression tree (keep the returned object
         alive as long as ``mbs`` runs); ``"python"`` returns the plain Python function.
+    friction_window : (float, float), optional
+        Times [s] between which friction is blended in (cubic step from 0 to 1); ``None``
+        means friction acts from the start.
     """
     math_backend = exu.symbolic if backend == "symbolic" else FLOAT_MATH
 
     def contact_force(mbs, t, itemNumber, displacement, rotation, velocity, angularVelocity,
                       stiffness, damping, rotJ0, rotJ1, offset):
+        scale = 1.0
+        if friction_window is not None:
+            scale = cubic_step(t, friction_window[0], 0.0, friction_window[1], 1.0, math_backend)
         load = sphere_plane_force(law, radius, displacement, velocity, angularVelocity,
-                                  math_backend)
+                                  math_backend, scale)
         return [-component for component in load]
 
     if backend == "python":

@@ -105,7 +105,9 @@ def friction_coefficient(law: ContactLaw, slip_speed, m=FLOAT_MATH):
     return m.IfThenElse(slip_speed < law.static_velocity, to_static, to_dynamic)
 
 
-def sphere_plane_force(law: ContactLaw, radius: float, centre, velocity, omega, m=FLOAT_MATH):
+def sphere_plane_force(
+    law: ContactLaw, radius: float, centre, velocity, omega, m=FLOAT_MATH, friction_scale=1.0
+):
     """Force and moment of a plane z = 0 (normal +z) on a sphere.
 
     Parameters
@@ -115,6 +117,9 @@ def sphere_plane_force(law: ContactLaw, radius: float, centre, velocity, omega, 
     centre, velocity, omega : sequence of 3
         Centre position [mm], centre velocity [mm/s] and angular velocity [rad/s] of the
         sphere, in the plane's frame.
+    friction_scale : float or expression
+        Factor on the friction force (1 = the law as it is; used to switch friction on
+        smoothly after the approach).
 
     Returns
     -------
@@ -131,7 +136,7 @@ def sphere_plane_force(law: ContactLaw, radius: float, centre, velocity, omega, 
     slip_speed = m.sqrt(slip_x * slip_x + slip_y * slip_y + 1e-12)
     # μ(v)/v -> 1.5 μ_s / v_s as v -> 0, so the force is a smooth viscous-like function of
     # slip; the 1e-12 mm²/s² floor only keeps the division defined at exactly zero slip.
-    scale = -friction_coefficient(law, slip_speed, m) * force_n / slip_speed
+    scale = -friction_scale * friction_coefficient(law, slip_speed, m) * force_n / slip_speed
     force_tx = scale * slip_x
     force_ty = scale * slip_y
     return [force_tx, force_ty, force_n, radius * force_ty, -radius * force_tx, 0.0]

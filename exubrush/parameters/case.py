@@ -137,6 +137,12 @@ class Motion:
     )
     approach_duration: float = param(1.0, "time to move from clearance to d", "s", above=0.0)
     hold_duration: float = param(0.2, "rest at d before sliding", "s", minimum=0.0)
+    approach_friction: str = param(
+        "auto",
+        "friction while approaching: on; off (blended in during the hold); auto = on for "
+        "DFM, off for PRB (a rigid PRB link with a sticking tip cannot buckle and jams)",
+        "text", choices=("auto", "on", "off"),
+    )
 
     def check(self) -> None:
         """A CSV profile needs a file."""

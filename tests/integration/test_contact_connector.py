@@ -69,3 +69,12 @@ def test_penetrating_sphere_is_pushed_up():
     mbs.SolveDynamic(settings)
     velocity = mbs.GetNodeOutput(body["nodeNumber"], exu.OutputVariableType.Velocity)
     assert velocity[2] > 0
+
+
+def test_friction_window_blends_friction_in():
+    function = contact_user_function(None, LAW, RADIUS, "python", friction_window=(1.0, 1.2))
+    state = dict(displacement=[0, 0, 0.38], rotation=[0, 0, 0], velocity=[3.0, 0, 0],
+                 angularVelocity=[0, 0, 0], stiffness=0, damping=0, rotJ0=0, rotJ1=0, offset=0)
+    before, during, after = (function(None, t, 0, **state) for t in (0.5, 1.1, 2.0))
+    assert before[0] == 0.0 and before[2] == after[2] != 0.0
+    assert after[0] > during[0] > 0.0  # connector load is minus the friction force (+x)

@@ -103,3 +103,13 @@ def test_friction_opposes_slip_in_any_direction():
 def test_law_checks_velocity_order():
     with pytest.raises(ValueError, match="static_velocity"):
         ContactLaw(static_velocity=2.0, dynamic_velocity=1.0).check()
+
+
+def test_friction_scale_switches_only_the_tangential_force():
+    state = ([0.0, 0.0, 0.38], [2.0, 1.0, -0.5], [0.1, 0.0, 0.0])
+    full = sphere_plane_force(LAW, 0.4, *state)
+    none = sphere_plane_force(LAW, 0.4, *state, friction_scale=0.0)
+    half = sphere_plane_force(LAW, 0.4, *state, friction_scale=0.5)
+    assert none[2] == full[2] and none[0] == none[1] == 0.0
+    assert half[0] == pytest.approx(0.5 * full[0], rel=1e-14)
+    assert half[4] == pytest.approx(0.5 * full[4], rel=1e-14)
