@@ -57,8 +57,13 @@ def _solver_statistics(mbs) -> dict:
     }
 
 
-def solve_group(case: Case, selection: list[int] | None, progress_queue=None) -> dict:
+def solve_group(
+    case: Case, selection: list[int] | None, progress_queue=None, parent_pid: int | None = None
+) -> dict:
     """Solve the bristles ``selection`` of ``case`` as one Exudyn system.
+
+    A worker process passes ``parent_pid``: if that process dies (Ctrl-C, kill), the solve
+    stops at the next step instead of computing on as an orphan.
 
     Returns
     -------
@@ -73,8 +78,11 @@ def solve_group(case: Case, selection: list[int] | None, progress_queue=None) ->
     reported = [0.0]
 
     def report(mbs, t):
-        if progress_queue is not None and t - reported[0] >= PROGRESS_STEP:
-            progress_queue.put(t - reported[0])
+        if t - reported[0] >= PROGRESS_STEP:
+            if parent_pid is not None and os.getppid() != parent_pid:
+                return False  # orphaned: stop the solver
+            if progress_queue is not None:
+                progress_queue.put(t - reported[0])
             reported[0] = t
         return True
 
@@ -127,7 +135,8 @@ def _run_groups(case: Case, groups, workers: int, progress: bool, total: float) 
     context = multiprocessing.get_context("spawn")
     with context.Manager() as manager, ProcessPoolExecutor(workers, mp_context=context) as pool:
         updates = manager.Queue()
-        futures = [pool.submit(solve_group, case, group, updates) for group in groups]
+        futures = [pool.submit(solve_group, case, group, updates, os.getpid())
+                   for group in groups]
         while not all(f.done() for f in futures):
             try:
                 bar.update(updates.get(timeout=0.2) * share)
