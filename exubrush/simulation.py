@@ -57,13 +57,25 @@ def _solver_statistics(mbs) -> dict:
     }
 
 
+_WORKER = {"queue": None, "parent": None}
+
+
+def _init_worker(progress_queue, parent_pid: int) -> None:
+    """Pool initializer: where to report progress, and which process to outlive never."""
+    _WORKER["queue"], _WORKER["parent"] = progress_queue, parent_pid
+
+
+def _solve_in_worker(case: Case, selection: list[int] | None) -> dict:
+    return solve_group(case, selection, _WORKER["queue"], _WORKER["parent"])
+
+
 def solve_group(
     case: Case, selection: list[int] | None, progress_queue=None, parent_pid: int | None = None
 ) -> dict:
     """Solve the bristles ``selection`` of ``case`` as one Exudyn system.
 
-    A worker process passes ``parent_pid``: if that process dies (Ctrl-C, kill), the solve
-    stops at the next step instead of computing on as an orphan.
+    A worker process passes ``parent_pid``: if that process dies (Ctrl-C, kill), the worker
+    exits at once instead of computing on as an orphan.
 
     Returns
     -------
@@ -80,7 +92,7 @@ def solve_group(
     def report(mbs, t):
         if t - reported[0] >= PROGRESS_STEP:
             if parent_pid is not None and os.getppid() != parent_pid:
-                return False  # orphaned: stop the solver
+                os._exit(1)  # orphaned: nobody will read the result
             if progress_queue is not None:
                 progress_queue.put(t - reported[0])
             reported[0] = t
@@ -133,10 +145,10 @@ def _run_groups(case: Case, groups, workers: int, progress: bool, total: float) 
         bar.close()
         return outputs
     context = multiprocessing.get_context("spawn")
-    with context.Manager() as manager, ProcessPoolExecutor(workers, mp_context=context) as pool:
-        updates = manager.Queue()
-        futures = [pool.submit(solve_group, case, group, updates, os.getpid())
-                   for group in groups]
+    updates = context.Queue()
+    with ProcessPoolExecutor(workers, mp_context=context, initializer=_init_worker,
+                             initargs=(updates, os.getpid())) as pool:
+        futures = [pool.submit(_solve_in_worker, case, group) for group in groups]
         while not all(f.done() for f in futures):
             try:
                 bar.update(updates.get(timeout=0.2) * share)
