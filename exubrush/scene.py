@@ -85,6 +85,14 @@ def friction_window(case: Case, motion: HeadMotion) -> tuple[float, float] | Non
     return (motion.approach_duration, motion.slide_start)
 
 
+def handle_kinematics(motion: HeadMotion, slide_axis: np.ndarray, t: float):
+    """Handle displacement from its start [mm], velocity [mm/s], acceleration [mm/s²] at t."""
+    s, v, a = motion.sliding(t)
+    z, vz, az = motion.descent(t)
+    down = np.array([0.0, 0.0, -1.0])
+    return s * slide_axis + z * down, v * slide_axis + vz * down, a * slide_axis + az * down
+
+
 @dataclass
 class Scene:
     """An assembled Exudyn system and the indices needed to read it."""
@@ -103,11 +111,7 @@ class Scene:
 
     def handle_offset(self, t: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Handle displacement [mm], velocity [mm/s], acceleration [mm/s²] from its start."""
-        s, v, a = self.motion.sliding(t)
-        z, vz, az = self.motion.descent(t)
-        down = np.array([0.0, 0.0, -1.0])
-        return (s * self.slide_axis + z * down, v * self.slide_axis + vz * down,
-                a * self.slide_axis + az * down)
+        return handle_kinematics(self.motion, self.slide_axis, t)
 
 
 def _add_drive(scene: Scene, handle_node) -> None:

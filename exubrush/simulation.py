@@ -36,6 +36,7 @@ from exubrush.scene import (
     HANDLE_SIZE,
     SLIDE_AXES,
     build_scene,
+    handle_kinematics,
     head_motion,
     prb_parameters,
 )
@@ -181,17 +182,13 @@ def simulate(case: Case, progress: bool = True, workers: int | None = None) -> R
     reaction = sum(o["reaction"][:n] for o in outputs)
     nodes = np.concatenate([o["nodes"][:n] for o in outputs], axis=1)
     slide_axis = SLIDE_AXES[case.motion.direction]
-    slide = np.array([motion.sliding(ti) for ti in t])
-    descent = np.array([motion.descent(ti) for ti in t])
-    handle_position = slide[:, :1] * slide_axis
-    handle_position[:, 2] += start_height - descent[:, 0]
+    kinematics = np.array([handle_kinematics(motion, slide_axis, ti) for ti in t])
+    handle_position = kinematics[:, 0] + np.array([0.0, 0.0, start_height])
     # The drive's reaction is the constraint multiplier: the force the handle's coordinates
     # exert on the drive. The head's force on the surface is its negative, minus the m·a of
     # the handle of each group (each group has its own handle).
     handle_mass = HANDLE_DENSITY * np.prod(HANDLE_SIZE) * len(outputs)
-    acceleration = slide[:, 2:3] * slide_axis
-    acceleration[:, 2] -= descent[:, 2]
-    head_force = -reaction - handle_mass * acceleration
+    head_force = -reaction - handle_mass * kinematics[:, 2]
     completed = all(o["completed"] for o in outputs)
     messages = sorted({o["message"] for o in outputs if o["message"]})
     stride = max(1, round(case.output.shape_interval / case.output.interval))
@@ -232,7 +229,7 @@ def simulate(case: Case, progress: bool = True, workers: int | None = None) -> R
     }
     return Results(
         time=t,
-        slider_position=slide[:, 0],
+        slider_position=np.array([motion.sliding(ti)[0] for ti in t]),
         normal_force=-head_force[:, 2],
         tangential_force=head_force @ slide_axis,
         head_height=handle_position[:, 2],
