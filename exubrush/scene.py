@@ -99,19 +99,13 @@ class Scene:
 
     system_container: exu.SystemContainer
     mbs: exu.MainSystem
-    case: Case
     motion: HeadMotion
     slide_axis: np.ndarray
-    start_height: float
-    bristles: list[BristleGeometry]
+    handle_mass: float
     drive_sensors: list = field(default_factory=list)
     node_sensors: list = field(default_factory=list)
     contacts: list = field(default_factory=list)
     keep_alive: list = field(default_factory=list)
-
-    def handle_offset(self, t: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Handle displacement [mm], velocity [mm/s], acceleration [mm/s²] from its start."""
-        return handle_kinematics(self.motion, self.slide_axis, t)
 
 
 def _add_drive(scene: Scene, handle_node) -> None:
@@ -123,7 +117,7 @@ def _add_drive(scene: Scene, handle_node) -> None:
         offset_function = 0
         if axis < 3:
             def offset_function(mbs, t, itemNumber, lOffset, axis=axis):
-                return float(scene.handle_offset(t)[0][axis])
+                return float(handle_kinematics(scene.motion, scene.slide_axis, t)[0][axis])
         constraint = mbs.AddObject(
             eii.ObjectConnectorCoordinate(
                 markerNumbers=[ground_marker, marker],
@@ -160,8 +154,7 @@ def build_scene(case: Case, selection: list[int] | None = None) -> Scene:
         nodeType=exu.NodeType.RotationRxyz, gravity=[0.0, 0.0, 0.0], show=False,
         returnDict=True,
     )
-    scene = Scene(SC, mbs, case, motion, SLIDE_AXES[case.motion.direction], start_height,
-                  bristles)
+    scene = Scene(SC, mbs, motion, SLIDE_AXES[case.motion.direction], handle_inertia.Mass())
     _add_drive(scene, handle["nodeNumber"])
     plane = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=ground, localPosition=[0, 0, 0]))
     laws = {}

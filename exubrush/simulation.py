@@ -32,8 +32,6 @@ from exubrush.parameters.case import Case
 from exubrush.parameters.fields import to_plain
 from exubrush.results import Results
 from exubrush.scene import (
-    HANDLE_DENSITY,
-    HANDLE_SIZE,
     SLIDE_AXES,
     build_scene,
     handle_kinematics,
@@ -83,7 +81,8 @@ def solve_group(
     dict
         ``time`` (n,) [s]; ``reaction`` (n, 3) drive force on the handle [N]; ``nodes``
         (n, bristles, nodes, 3) node positions [mm]; ``statistics``; ``completed``;
-        ``message``; ``wall_time`` [s]; ``contacts`` (number of contact elements).
+        ``message``; ``wall_time`` [s]; ``contacts`` (number of contact elements);
+        ``handle_mass`` [t].
     """
     scene = build_scene(case, selection)
     end_time = scene.motion.end_time
@@ -123,6 +122,7 @@ def solve_group(
         "message": message,
         "wall_time": wall,
         "contacts": len(scene.contacts),
+        "handle_mass": scene.handle_mass,
     }
 
 
@@ -187,7 +187,7 @@ def simulate(case: Case, progress: bool = True, workers: int | None = None) -> R
     # The drive's reaction is the constraint multiplier: the force the handle's coordinates
     # exert on the drive. The head's force on the surface is its negative, minus the m·a of
     # the handle of each group (each group has its own handle).
-    handle_mass = HANDLE_DENSITY * np.prod(HANDLE_SIZE) * len(outputs)
+    handle_mass = sum(o["handle_mass"] for o in outputs)
     head_force = -reaction - handle_mass * kinematics[:, 2]
     completed = all(o["completed"] for o in outputs)
     messages = sorted({o["message"] for o in outputs if o["message"]})
