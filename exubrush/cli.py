@@ -44,13 +44,10 @@ def run(case, model, segments, periods, out, overrides, quiet):
         parameters = load_case(case, [*filter(None, shortcuts), *overrides])
     except (ParameterError, UnitError) as err:
         _fail(str(err))
-    from exubrush.scene import SceneError
+    _warn_unreachable(parameters)
     from exubrush.simulation import simulate
 
-    try:
-        results = simulate(parameters, progress=not quiet)
-    except SceneError as err:
-        _fail(str(err))
+    results = simulate(parameters, progress=not quiet)
     directory = Path(out or f"results/{parameters.name}-{parameters.model.kind}")
     results.save(directory)
     meta = results.metadata
@@ -62,6 +59,18 @@ def run(case, model, segments, periods, out, overrides, quiet):
     if not meta["completed"]:
         click.echo(f"solver: {meta['message'] or 'stopped before the end time'}", err=True)
         sys.exit(1)
+
+
+def _warn_unreachable(parameters) -> None:
+    from exubrush.models.geometry import can_reach, head_bristles
+
+    bristles = head_bristles(parameters.head)
+    distance = parameters.motion.interaction_distance
+    missing = sum(not can_reach(b, distance) for b in bristles)
+    if missing:
+        click.echo(f"exubrush: warning: {missing} of {len(bristles)} bristles cannot reach the "
+                   f"surface at motion.interaction_distance = {distance:g} mm; they get no "
+                   "contact", err=True)
 
 
 @main.command()

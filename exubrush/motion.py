@@ -16,9 +16,14 @@ import csv
 import math
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 from scipy.interpolate import CubicSpline
+
+if TYPE_CHECKING:
+    from exubrush.models.geometry import BristleGeometry
+    from exubrush.parameters.case import Case
 
 
 def smooth_step(tau: float) -> tuple[float, float, float]:
@@ -81,8 +86,11 @@ class TabulatedSlide:
             raise ValueError("a slide table needs at least two (time, position) rows")
         if not np.all(np.isfinite(times)) or not np.all(np.isfinite(positions)):
             raise ValueError("a slide table must hold finite numbers only")
-        if np.any(np.diff(times) <= 0.0):
-            raise ValueError("slide table times must increase strictly")
+        steps = np.flatnonzero(np.diff(times) <= 0.0)
+        if steps.size:
+            k = steps[0] + 1
+            raise ValueError(f"times must increase strictly, but sample {k + 1} is at "
+                             f"{times[k]:g} s after {times[k - 1]:g} s")
         self._t0 = float(times[0])
         self._spline = CubicSpline(times - times[0], positions - positions[0])
         self.duration = float(times[-1] - times[0])
@@ -99,32 +107,45 @@ def read_slide_csv(path: str | Path) -> TabulatedSlide:
     Other columns are ignored; the unit in each header is converted (e.g. ``[ms]``,
     ``[m]``), and a header without a unit is refused.
     """
-    from exubrush.units import to_internal
+    from exubrush.units import UnitError, to_internal
 
     path = Path(path)
+    name = f"slide CSV {str(path)!r}"
     if not path.is_file():
-        raise ValueError(f"slide CSV {str(path)!r} does not exist")
+        raise ValueError(f"{name} does not exist")
     with path.open(newline="") as handle:
-        rows = list(csv.reader(handle))
+        rows = [row for row in csv.reader(handle) if any(cell.strip() for cell in row)]
     if len(rows) < 3:
-        raise ValueError(f"slide CSV {str(path)!r} needs a header and at least two rows")
+        raise ValueError(f"{name} needs a header and at least two rows, found {len(rows)} lines")
     columns = {}
-    for index, name in enumerate(rows[0]):
-        label, _, unit = name.strip().partition("[")
+    for index, name_cell in enumerate(rows[0]):
+        label, _, unit = name_cell.strip().partition("[")
         columns[label.strip()] = (index, unit.rstrip("]").strip())
     data = {}
     for label, target in (("time", "s"), ("slider_position", "mm")):
         if label not in columns:
-            raise ValueError(f"slide CSV {str(path)!r} has no column '{label} [unit]'")
+            raise ValueError(f"{name} has no column '{label} [unit]'")
         index, unit = columns[label]
         if not unit:
-            raise ValueError(f"slide CSV column '{label}' has no unit; write '{label} [{target}]'")
-        factor = to_internal(f"1 {unit}", target)
+            raise ValueError(f"{name}: column '{label}' has no unit; write '{label} [{target}]'")
         try:
-            data[label] = np.array([float(row[index]) for row in rows[1:]]) * factor
-        except (ValueError, IndexError):
-            raise ValueError(f"slide CSV column '{label}' has a non-numeric cell") from None
-    return TabulatedSlide(data["time"], data["slider_position"])
+            factor = to_internal(f"1 {unit}", target)
+        except UnitError as err:
+            raise ValueError(f"{name}: column '{label}': {err}") from None
+        values = []
+        for line, row in enumerate(rows[1:], start=2):
+            try:
+                values.append(float(row[index]))
+            except (ValueError, IndexError):
+                cell = row[index] if index < len(row) else ""
+                raise ValueError(
+                    f"{name}: line {line}, column '{label}': {cell!r} is not a number"
+                ) from None
+        data[label] = np.array(values) * factor
+    try:
+        return TabulatedSlide(data["time"], data["slider_position"])
+    except ValueError as err:
+        raise ValueError(f"{name}: {err}") from None
 
 
 @dataclass(frozen=True)
@@ -169,3 +190,30 @@ class HeadMotion:
         if t <= self.slide_start:
             return 0.0, 0.0, 0.0
         return self.slide.evaluate(t - self.slide_start)
+
+
+def head_motion(case: Case, bristles: list[BristleGeometry]) -> tuple[HeadMotion, float]:
+    """The head's motion and the start height of the roots' surface above the plane [mm].
+
+    Raises ValueError if the interaction distance is not below the start height, i.e. no
+    bristle would ever touch the surface.
+    """
+    m = case.motion
+    lowest = min(b.lowest_reach for b in bristles)
+    start_height = m.approach_clearance - lowest
+    if start_height <= m.interaction_distance:
+        raise ValueError(
+            f"motion.interaction_distance ({m.interaction_distance:g} mm) is not below the "
+            f"start height of the roots ({start_height:g} mm): no bristle would touch; "
+            "reduce it below the bristle length plus tip radius"
+        )
+    slide = read_slide_csv(m.csv_file) if m.profile == "csv" else SineSlide(
+        m.amplitude, m.period, m.periods
+    )
+    motion = HeadMotion(
+        approach_distance=start_height - m.interaction_distance,
+        approach_duration=m.approach_duration,
+        hold_duration=m.hold_duration,
+        slide=slide,
+    )
+    return motion, start_height

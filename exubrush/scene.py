@@ -17,10 +17,10 @@ from exudyn.rigidBodyUtilities import InertiaCuboid
 
 from exubrush.contact.exudyn_contact import add_tip_contact, contact_user_function
 from exubrush.models.dfm import add_dfm_bristle
-from exubrush.models.geometry import BristleGeometry, head_bristles
+from exubrush.models.geometry import can_reach, head_bristles
 from exubrush.models.howell import howell_parameters
 from exubrush.models.prb import add_prb_bristle
-from exubrush.motion import HeadMotion, SineSlide, read_slide_csv
+from exubrush.motion import HeadMotion, head_motion
 from exubrush.parameters.case import Case
 
 # the handle is a stiff block whose mass only enters the drive reaction, from which the
@@ -31,42 +31,11 @@ HANDLE_DENSITY = 1.2e-9  # t/mm³ (acrylic-like)
 SLIDE_AXES = {"orthogonal": np.array([0.0, 1.0, 0.0]), "parallel": np.array([1.0, 0.0, 0.0])}
 
 
-class SceneError(ValueError):
-    """The case cannot be turned into a meaningful model (e.g. no bristle reaches)."""
-
-
 def prb_parameters(case: Case) -> tuple[float, float]:
     """(γ, K_Θ) for the PRB model: Howell's table at n = 1/μ_d, or the explicit values."""
     if case.model.prb_parameters == "explicit":
         return case.model.prb_gamma, case.model.prb_stiffness_coefficient
-    mu = case.contact.dynamic_friction
-    if mu <= 0.0:
-        raise SceneError("contact.dynamic_friction is 0, so n = 1/mu is infinite; "
-                         "set model.prb_parameters = 'explicit'")
-    return howell_parameters(1.0 / mu)
-
-
-def head_motion(case: Case, bristles: list[BristleGeometry]) -> tuple[HeadMotion, float]:
-    """The head's motion and the initial height of the roots' surface above the plane [mm]."""
-    m = case.motion
-    lowest = min(b.lowest_reach for b in bristles)
-    start_height = m.approach_clearance - lowest
-    if start_height <= m.interaction_distance:
-        raise SceneError(
-            f"motion.interaction_distance ({m.interaction_distance:g} mm) is not below the "
-            f"start height of the roots ({start_height:g} mm): no bristle would touch; "
-            "reduce it below the bristle length plus tip radius"
-        )
-    slide = read_slide_csv(m.csv_file) if m.profile == "csv" else SineSlide(
-        m.amplitude, m.period, m.periods
-    )
-    motion = HeadMotion(
-        approach_distance=start_height - m.interaction_distance,
-        approach_duration=m.approach_duration,
-        hold_duration=m.hold_duration,
-        slide=slide,
-    )
-    return motion, start_height
+    return howell_parameters(1.0 / case.contact.dynamic_friction)
 
 
 def friction_window(case: Case, motion: HeadMotion) -> tuple[float, float] | None:
@@ -79,9 +48,6 @@ def friction_window(case: Case, motion: HeadMotion) -> tuple[float, float] | Non
     mode = case.motion.approach_friction
     if mode == "on" or (mode == "auto" and case.model.kind == "dfm"):
         return None
-    if case.motion.hold_duration <= 0.0:
-        raise SceneError("motion.approach_friction off (or auto with PRB) blends friction in "
-                         "during the hold: set motion.hold_duration > 0")
     return (motion.approach_duration, motion.slide_start)
 
 
@@ -174,8 +140,7 @@ def build_scene(case: Case, selection: list[int] | None = None) -> Scene:
                                          outputVariableType=exu.OutputVariableType.Position))
             for n in items.nodes
         ])
-        # coarse reach test: a tip can touch only if the roots come closer than l + r
-        if case.motion.interaction_distance < bristle.length + bristle.tip_radius:
+        if can_reach(bristle, case.motion.interaction_distance):
             if bristle.tip_radius not in laws:
                 laws[bristle.tip_radius] = contact_user_function(
                     mbs, case.contact, bristle.tip_radius, case.solver.user_functions,

@@ -28,16 +28,11 @@ from tqdm import tqdm
 
 import exubrush
 from exubrush.models.geometry import head_bristles
+from exubrush.motion import head_motion
 from exubrush.parameters.case import Case
 from exubrush.parameters.fields import to_plain
 from exubrush.results import Results
-from exubrush.scene import (
-    SLIDE_AXES,
-    build_scene,
-    handle_kinematics,
-    head_motion,
-    prb_parameters,
-)
+from exubrush.scene import SLIDE_AXES, build_scene, handle_kinematics, prb_parameters
 from exubrush.solver import dynamic_settings
 
 PROGRESS_STEP = 0.05  # s of simulated time between progress reports of a group

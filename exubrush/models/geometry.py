@@ -67,6 +67,11 @@ class BristleGeometry:
         return float(self.point(self.length)[2] - self.tip_radius)
 
 
+def can_reach(bristle: BristleGeometry, interaction_distance: float) -> bool:
+    """Coarse reach test: a tip touches the plane only if d < l + r (any tilt) [mm]."""
+    return interaction_distance < bristle.length + bristle.tip_radius
+
+
 def _entries(head: Head) -> list[BristleEntry]:
     if head.layout == "list":
         return list(head.bristles)

@@ -93,9 +93,15 @@ class Head:
     bristles: tuple[BristleEntry, ...] = ()
 
     def check(self) -> None:
-        """A list layout needs entries."""
+        """A list layout needs entries, each at its own root."""
         if self.layout == "list" and not self.bristles:
             raise ValueError("layout 'list' needs at least one [[head.bristles]] entry")
+        roots = {}
+        for index, entry in enumerate(self.bristles):
+            first = roots.setdefault((entry.x, entry.y), index)
+            if first != index:
+                raise ValueError(f"bristles[{index}] has the same root (x, y) as "
+                                 f"bristles[{first}]: give each bristle its own position")
 
 
 @dataclass(frozen=True)
@@ -190,6 +196,12 @@ class Output:
     interval: float = param(0.01, "force output interval", "s", above=0.0)
     shape_interval: float = param(0.1, "bristle shape output interval", "s", above=0.0)
 
+    def check(self) -> None:
+        """Shapes are sampled from the force output, so not more often than it."""
+        if self.shape_interval < self.interval:
+            raise ValueError(f"shape_interval ({self.shape_interval:g} s) must not be shorter "
+                             f"than interval ({self.interval:g} s)")
+
 
 @dataclass(frozen=True)
 class Case:
@@ -202,6 +214,20 @@ class Case:
     motion: Motion = field(default_factory=Motion)
     solver: Solver = field(default_factory=Solver)
     output: Output = field(default_factory=Output)
+
+    def check(self) -> None:
+        """Rules that tie sections together (PRB parameters, friction blending)."""
+        prb = self.model.kind == "prb"
+        table = self.model.prb_parameters == "howell-table"
+        if prb and table and self.contact.dynamic_friction <= 0:
+            raise ValueError("model.prb_parameters 'howell-table' uses n = 1/contact."
+                             "dynamic_friction, which is infinite for mu_d = 0; set "
+                             "model.prb_parameters = 'explicit'")
+        blended = self.motion.approach_friction == "off" or (
+            prb and self.motion.approach_friction == "auto")
+        if blended and self.motion.hold_duration <= 0.0:
+            raise ValueError("motion.approach_friction off (or auto with PRB) blends friction "
+                             "in during the hold: set motion.hold_duration > 0")
 
 
 def orthogonal_case() -> Case:

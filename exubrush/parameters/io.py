@@ -3,8 +3,11 @@
 from __future__ import annotations
 
 import tomllib
+from dataclasses import replace
 from pathlib import Path
 
+from exubrush.models.geometry import head_bristles
+from exubrush.motion import head_motion, read_slide_csv
 from exubrush.parameters.case import BUILT_IN_CASES, Case
 from exubrush.parameters.fields import (
     ParameterError,
@@ -20,7 +23,9 @@ def case_data(case: str) -> dict:
     if case in BUILT_IN_CASES:
         return to_plain(BUILT_IN_CASES[case]())
     path = Path(case)
-    if path.suffix.lower() != ".toml" or not path.is_file():
+    if path.suffix.lower() == ".toml" and not path.is_file():
+        raise ParameterError(f"case file {case!r} does not exist")
+    if path.suffix.lower() != ".toml":
         raise ParameterError(
             f"unknown case {case!r}: use {', '.join(BUILT_IN_CASES)} or the path of a TOML "
             "case file (see 'exubrush case orthogonal')"
@@ -37,4 +42,24 @@ def load_case(case: str, overrides: list[str] | tuple[str, ...] = ()) -> Case:
     for assignment in overrides:
         key, value = parse_override(assignment)
         apply_override(data, Case, key, value)
-    return build(Case, data)
+    built = build(Case, data)
+    if built.motion.profile == "csv":
+        folder = Path(case).parent if case.endswith(".toml") else None
+        built = _with_checked_slide_csv(built, folder)
+    try:
+        head_motion(built, head_bristles(built.head))
+    except ValueError as err:
+        raise ParameterError(str(err)) from None
+    return built
+
+
+def _with_checked_slide_csv(case: Case, case_folder: Path | None) -> Case:
+    """Resolve ``motion.csv_file`` (relative to the case file) and read it once to check it."""
+    path = Path(case.motion.csv_file).expanduser()
+    if not path.is_absolute() and case_folder is not None:
+        path = case_folder / path
+    try:
+        read_slide_csv(path)
+    except ValueError as err:
+        raise ParameterError(f"motion.csv_file: {err}") from None
+    return replace(case, motion=replace(case.motion, csv_file=str(path.resolve())))

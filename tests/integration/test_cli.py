@@ -49,7 +49,7 @@ def test_case_prints_toml_that_runs_back(tmp_path):
     (["run", "orthogonal", "--set", "head.nope=1"], "unknown parameter"),
     (["run", "orthogonal", "--model", "fem"], "'fem' is not one of"),
     (["run", "orthogonal", "--set", "motion.interaction_distance='9 mm'"], "no bristle"),
-    (["case", "missing.toml"], "unknown case 'missing.toml'"),
+    (["case", "missing.toml"], "case file 'missing.toml' does not exist"),
 ])
 def test_user_mistakes_give_one_line_and_exit_2(args, message):
     done = _exubrush(*args)

@@ -1,0 +1,125 @@
+"""Malformed input is refused before anything is built, with one line naming what is wrong.
+
+Each row is (kind, input, part of the message it must produce). Kinds: ``set`` --set
+overrides on the orthogonal case; ``toml`` the text of a case file; ``csv`` the text of a
+slide-profile CSV used by the case; ``case`` the CASE argument itself.
+"""
+
+import pytest
+
+from exubrush.parameters.fields import ParameterError
+from exubrush.parameters.io import load_case
+
+MALFORMED = [
+    # lengths, moduli and other positive quantities
+    ("set", ["head.bristle.length='-1 mm'"], "head.bristle.length: -1 mm must be > 0 mm"),
+    ("set", ["head.bristle.length='0 mm'"], "head.bristle.length: 0 mm must be > 0 mm"),
+    ("set", ["head.bristle.tip_radius='0 mm'"], "head.bristle.tip_radius: 0 mm must be > 0 mm"),
+    ("set", ["head.material.youngs_modulus='0 MPa'"], "youngs_modulus: 0 MPa must be > 0 MPa"),
+    ("set", ["head.material.density='-1 kg/m^3'"], "density: -1 kg/m^3 must be > 0 kg/m^3"),
+    ("set", ["head.material.damping_time='-1 s'"], "damping_time: -1 s must be >= 0 s"),
+    ("set", ["head.pitch_along='-1 mm'"], "head.pitch_along: -1 mm must be > 0 mm"),
+    ("set", ["head.rows=0"], "head.rows: 0 must be > 0"),
+    ("set", ["model.segments=0"], "model.segments: 0 must be > 0"),
+    ("set", ["motion.periods=-1"], "motion.periods: -1 must be > 0"),
+    ("set", ["motion.approach_duration='0 s'"], "approach_duration: 0 s must be > 0 s"),
+    ("set", ["motion.hold_duration='-1 s'"], "hold_duration: -1 s must be >= 0 s"),
+    ("set", ["solver.step_size='0 s'"], "solver.step_size: 0 s must be > 0 s"),
+    ("set", ["output.interval='0 s'"], "output.interval: 0 s must be > 0 s"),
+    # material and contact ranges
+    ("set", ["head.material.poisson_ratio=0.5"], "poisson_ratio: 0.5 must be < 0.5"),
+    ("set", ["head.material.poisson_ratio=-0.1"], "poisson_ratio: -0.1 must be >= 0"),
+    ("set", ["contact.dynamic_friction=-0.2"], "contact.dynamic_friction: -0.2 must be >= 0"),
+    ("set", ["contact.static_velocity='2 mm/s'"], "static_velocity (2 mm/s) must be below"),
+    ("set", ["contact.stiffness_exponent=0"], "contact.stiffness_exponent: 0 must be > 0"),
+    ("set", ["model.prb_gamma=1.5"], "model.prb_gamma: 1.5 must be < 1"),
+    ("set", ["head.root_tilt='100 deg'"], "head.root_tilt: 100 deg must be < 30 deg"),
+    ("set", ["solver.spectral_radius=1.5"], "spectral_radius 1.5 must be <= 1"),
+    ("set", ["solver.minimum_step_size='1 s'"], "minimum_step_size must not exceed step_size"),
+    # units
+    ("set", ["head.bristle.length=5"], "head.bristle.length: 5 has no unit"),
+    ("set", ["contact.damping='0.2'"], "contact.damping: '0.2' has no unit"),
+    ("set", ["head.material.youngs_modulus='5 mm'"], "cannot be converted to 'MPa'"),
+    ("set", ["contact.stiffness='100 N/mm'"], "cannot be converted to 'N/mm^1.3'"),
+    ("set", ["head.bristle.width='abc'"], "cannot read 'abc' as a quantity"),
+    ("set", ["motion.amplitude='nan mm'"], "motion.amplitude: 'nan mm' is not a finite number"),
+    # types and choices
+    ("set", ["model.kind='beam'"], "model.kind: 'beam' is not one of 'dfm', 'prb'"),
+    ("set", ["head.bristle.section='hexagon'"], "'hexagon' is not one of 'rectangle'"),
+    ("set", ["model.segments=2.5"], "model.segments: expected a whole number"),
+    ("set", ["head.rows='four'"], "head.rows: expected a whole number, got 'four'"),
+    ("set", ["name=3"], "name: expected text, got 3"),
+    # keys and syntax of --set
+    ("set", ["head.bristle.lenght='5 mm'"], "--set head.bristle.lenght: unknown parameter"),
+    ("set", ["length='5 mm'"], "did you mean head.bristle.length"),
+    ("set", ["head.rows"], "expected KEY=VALUE"),
+    # rules across fields
+    ("set", ["head.bristle.section='circle'"], "a circle section needs width == height"),
+    ("set", ["motion.profile='csv'"], "profile 'csv' needs csv_file"),
+    ("set", ["output.shape_interval='0.001 s'"], "shape_interval (0.001 s) must not be shorter"),
+    ("set", ["model.kind='prb'", "contact.dynamic_friction=0", "contact.static_friction=0"],
+     "infinite for mu_d = 0"),
+    ("set", ["model.kind='prb'", "motion.hold_duration='0 s'"], "set motion.hold_duration > 0"),
+    ("set", ["motion.interaction_distance='10 mm'"], "no bristle would touch"),
+    # case files
+    ("toml", "[head\nrows = 2\n", "not valid TOML"),
+    ("toml", "[head]\nrows = 2\nrows = 3\n", "not valid TOML (Cannot overwrite a value"),
+    ("toml", "[head]\ncolour = 'red'\n", "head.colour: unknown key"),
+    ("toml", "[colour]\nx = 1\n", "colour: unknown key; known keys here: contact, head"),
+    ("toml", "[head]\nbristles = 3\n", "head.bristles: expected a list of tables"),
+    ("toml", "[head]\nlayout = 'list'\n", "layout 'list' needs at least one [[head.bristles]]"),
+    ("toml", '[head]\nlayout = "list"\n[[head.bristles]]\nx = "0 mm"\ncolour = "red"\n',
+     "head.bristles[0].colour: unknown key"),
+    ("toml", '[head]\nlayout = "list"\n[[head.bristles]]\nx = "1 mm"\n[[head.bristles]]\n'
+     'x = "1 mm"\n', "bristles[1] has the same root (x, y) as bristles[0]"),
+    ("toml", '[head.material]\nyoungs_modulus = 7.5\n', "youngs_modulus: 7.5 has no unit"),
+    # measured slide profiles
+    ("csv", "", "needs a header and at least two rows, found 0 lines"),
+    ("csv", "time [s],slider_position [mm]\n", "needs a header and at least two rows"),
+    ("csv", "time [s],position [mm]\n0,0\n1,1\n", "has no column 'slider_position [unit]'"),
+    ("csv", "time,slider_position [mm]\n0,0\n1,1\n", "column 'time' has no unit"),
+    ("csv", "time [mm],slider_position [mm]\n0,0\n1,1\n", "cannot be converted to 's'"),
+    ("csv", "time [s],slider_position [mm]\n0,0\n1,abc\n", "line 3, column 'slider_position': "
+     "'abc' is not a number"),
+    ("csv", "time [s],slider_position [mm]\n0,0\n1\n", "line 3, column 'slider_position'"),
+    ("csv", "time [s],slider_position [mm]\n0,0\n1,1\n0.5,2\n",
+     "times must increase strictly, but sample 3 is at 0.5 s after 1 s"),
+    ("csv", "time [s],slider_position [mm]\n0,0\n1,nan\n", "must hold finite numbers only"),
+    # the CASE argument
+    ("case", "diagonal", "unknown case 'diagonal': use orthogonal, parallel"),
+    ("case", "missing.toml", "case file 'missing.toml' does not exist"),
+]
+
+
+def _load(kind, given, tmp_path):
+    if kind == "set":
+        return load_case("orthogonal", given)
+    if kind == "toml":
+        path = tmp_path / "case.toml"
+        path.write_text(given)
+        return load_case(str(path))
+    if kind == "csv":
+        path = tmp_path / "slide.csv"
+        path.write_text(given)
+        return load_case("orthogonal", ["motion.profile='csv'", f"motion.csv_file='{path}'"])
+    return load_case(given)
+
+
+def test_the_table_is_large_enough():
+    assert len(MALFORMED) >= 30
+
+
+@pytest.mark.parametrize("kind, given, message", MALFORMED)
+def test_malformed_input_is_refused_with_its_message(kind, given, message, tmp_path):
+    with pytest.raises(ParameterError) as info:
+        _load(kind, given, tmp_path)
+    assert message in str(info.value)
+    assert "\n" not in str(info.value)
+
+
+def test_csv_path_is_relative_to_the_case_file(tmp_path):
+    (tmp_path / "slide.csv").write_text("time [s],slider_position [mm]\n0,0\n1,2\n")
+    path = tmp_path / "measured.toml"
+    path.write_text('[motion]\nprofile = "csv"\ncsv_file = "slide.csv"\n')
+    case = load_case(str(path))
+    assert case.motion.csv_file == str((tmp_path / "slide.csv").resolve())
