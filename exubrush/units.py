@@ -12,6 +12,7 @@ guessed.
 from __future__ import annotations
 
 import functools
+import math
 
 import pint
 
@@ -58,10 +59,14 @@ def to_internal(text: str | float | int, unit: str) -> float:
         raise UnitError(f"{text!r} has no unit; write it with one, e.g. '{text} {unit}'")
     try:
         quantity = ureg.Quantity(str(text).strip())
-    except (pint.errors.PintError, ValueError, TypeError, AttributeError, SyntaxError) as err:
-        raise UnitError(f"cannot read {text!r} as a quantity ({err})") from None
-    if not isinstance(quantity, pint.Quantity):
-        quantity = ureg.Quantity(quantity)
+        if not isinstance(quantity, pint.Quantity):
+            quantity = ureg.Quantity(quantity)
+        magnitude = float(quantity.magnitude)
+    except Exception as err:  # noqa: BLE001 - pint's parser raises many types on free text
+        reason = " ".join(str(err).split()) or type(err).__name__
+        raise UnitError(f"cannot read {text!r} as a quantity ({reason})") from None
+    if not math.isfinite(magnitude):
+        raise UnitError(f"{text!r} is not a finite number")
     if quantity.dimensionless and not target.dimensionless:
         raise UnitError(f"{text!r} has no unit; write it with one, e.g. '{text} {unit}'")
     try:

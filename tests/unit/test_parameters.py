@@ -5,7 +5,7 @@ import tomllib
 import pytest
 
 from exubrush.parameters.case import Case, orthogonal_case, parallel_case
-from exubrush.parameters.fields import ParameterError, build, dotted_keys, to_toml
+from exubrush.parameters.fields import build, dotted_keys, to_toml
 from exubrush.parameters.io import load_case
 
 
