@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import signal
 import sys
 from pathlib import Path
 
@@ -34,9 +35,15 @@ def main() -> None:
 @click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE",
               help="Override a parameter by its dotted key, e.g. --set head.rows=2 "
                    "or --set head.material.youngs_modulus='10 MPa'.")
+@click.option("--overwrite", is_flag=True,
+              help="Replace exubrush results already in --out (other files are never touched).")
 @click.option("--quiet", is_flag=True, help="No progress bar.")
-def run(case, model, segments, periods, out, overrides, quiet):
-    """Simulate CASE (orthogonal, parallel or a TOML case file) and save the results."""
+def run(case, model, segments, periods, out, overrides, overwrite, quiet):
+    """Simulate CASE (orthogonal, parallel or a TOML case file) and save the results.
+
+    Finished bristles are kept in OUT/.checkpoint while the run goes on: after Ctrl-C, a
+    kill or a crash, the same command resumes where it stopped.
+    """
     shortcuts = [f"model.kind={model!r}" if model else None,
                  f"model.segments={segments}" if segments is not None else None,
                  f"motion.periods={periods}" if periods is not None else None]
@@ -45,20 +52,33 @@ def run(case, model, segments, periods, out, overrides, quiet):
     except (ParameterError, UnitError) as err:
         _fail(str(err))
     _warn_unreachable(parameters)
+    from exubrush.rundir import RunDirectory, RunDirectoryError
     from exubrush.simulation import simulate
 
-    results = simulate(parameters, progress=not quiet)
     directory = Path(out or f"results/{parameters.name}-{parameters.model.kind}")
+    try:
+        store = RunDirectory(directory, parameters, overwrite)
+    except RunDirectoryError as err:
+        _fail(str(err))
+    if store.resumed:
+        click.echo(f"resuming: {store.resumed} finished bristle groups read from "
+                   f"{store.checkpoint}", err=True)
+    # a kill (SIGTERM) stops the run like Ctrl-C: what is finished is kept and saved
+    signal.signal(signal.SIGTERM, signal.default_int_handler)
+    results = simulate(parameters, progress=not quiet, directory=store)
     results.save(directory)
     meta = results.metadata
-    status = "completed" if meta["completed"] else "STOPPED EARLY (partial results)"
-    click.echo(
-        f"{status}: {meta['simulated_time_s']:.2f} s simulated in {meta['wall_time_s']:.1f} s "
-        f"wall time; results in {directory}/ (forces.csv, run.json, forces.png, shapes.npz)"
-    )
-    if not meta["completed"]:
-        click.echo(f"solver: {meta['message'] or 'stopped before the end time'}", err=True)
-        sys.exit(1)
+    if meta["status"] == "completed":
+        store.close()
+        click.echo(f"completed: {meta['simulated_time_s']:.2f} s simulated in "
+                   f"{meta['wall_time_s']:.1f} s wall time; results in {directory}/ "
+                   "(forces.csv, run.json, forces.png, shapes.npz)")
+        return
+    saved = (f"partial results up to t = {meta['simulated_time_s']:.4g} s in {directory}/"
+             if len(results.time) else f"no complete time series yet; status in {directory}/")
+    click.echo(f"exubrush: {meta['status']}: {meta['message']}; {saved} (run.json: status "
+               f"{meta['status']!r})", err=True)
+    sys.exit(130 if meta["status"] == "interrupted" else 1)
 
 
 def _warn_unreachable(parameters) -> None:

@@ -20,7 +20,10 @@ def plot_forces(results, target) -> None:
     axes[2].set_ylabel("|F_t| / F_n [-]")
     axes[2].set_xlabel("travelled distance [mm]")
     meta = results.metadata
-    fig.suptitle(f"exubrush {meta.get('case', '')}: {meta.get('model', '')} model (simulation)")
+    status = meta.get("status", "completed")
+    partial = "" if status == "completed" else f" - PARTIAL, {status}"
+    fig.suptitle(f"exubrush {meta.get('case', '')}: {meta.get('model', '')} model "
+                 f"(simulation){partial}")
     for axis in axes:
         axis.grid(True, alpha=0.3)
     fig.tight_layout()

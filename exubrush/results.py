@@ -79,10 +79,19 @@ class Results:
         """Write forces.csv, run.json, shapes.npz and forces.png into ``directory``.
 
         Each file is written to a temporary file first and renamed, so a file on disk is
-        either complete or absent.
+        either complete or absent. Results without any time series (a run interrupted
+        before every bristle started) write run.json only and remove older result files,
+        so files of different runs never sit side by side. run.json is written last: its
+        ``status`` describes the files beside it.
         """
         directory = Path(directory)
         directory.mkdir(parents=True, exist_ok=True)
+        (directory / "run.json").unlink(missing_ok=True)  # no status while files change
+        if len(self.time) == 0:
+            for name in ("forces.csv", "shapes.npz", "forces.png"):
+                (directory / name).unlink(missing_ok=True)
+            self._save_metadata(directory)
+            return directory
         columns = self.columns()
         with _atomic(directory / "forces.csv", "w", newline="") as handle:
             writer = csv.writer(handle)
@@ -91,13 +100,16 @@ class Results:
                 writer.writerow(["" if np.isnan(v) else f"{v:.9g}" for v in row])
         with _atomic(directory / "shapes.npz", "wb") as handle:
             np.savez_compressed(handle, time=self.shape_time, nodes=self.shape_nodes)
-        with _atomic(directory / "run.json", "w") as handle:
-            json.dump(self.metadata, handle, indent=2, default=_json_default)
         from exubrush.plotting import plot_forces
 
         with _atomic(directory / "forces.png", "wb") as handle:
             plot_forces(self, handle)
+        self._save_metadata(directory)
         return directory
+
+    def _save_metadata(self, directory: Path) -> None:
+        with _atomic(directory / "run.json", "w") as handle:
+            json.dump(self.metadata, handle, indent=2, default=_json_default)
 
 
 def _json_default(value):

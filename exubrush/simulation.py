@@ -19,8 +19,9 @@ import multiprocessing
 import os
 import platform
 import queue
+import signal
 import time
-from concurrent.futures import ProcessPoolExecutor
+from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 
 import exudyn as exu
 import numpy as np
@@ -32,6 +33,7 @@ from exubrush.motion import head_motion
 from exubrush.parameters.case import Case
 from exubrush.parameters.fields import to_plain
 from exubrush.results import Results
+from exubrush.rundir import RunDirectory
 from exubrush.scene import SLIDE_AXES, build_scene, handle_kinematics, prb_parameters
 from exubrush.solver import dynamic_settings
 
@@ -51,25 +53,31 @@ def _solver_statistics(mbs) -> dict:
     }
 
 
-_WORKER = {"queue": None, "parent": None}
+_WORKER = {"queue": None, "parent": None, "stop": None}
 
 
-def _init_worker(progress_queue, parent_pid: int) -> None:
-    """Pool initializer: where to report progress, and which process to outlive never."""
-    _WORKER["queue"], _WORKER["parent"] = progress_queue, parent_pid
+def _init_worker(progress_queue, parent_pid: int, stop) -> None:
+    """Pool initializer: where to report progress, which process to outlive never, and the
+    event that asks for a clean stop. Ctrl-C reaches the whole process group; the parent
+    decides, so workers ignore SIGINT and watch ``stop`` instead."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    _WORKER.update(queue=progress_queue, parent=parent_pid, stop=stop)
 
 
 def _solve_in_worker(case: Case, selection: list[int] | None) -> dict:
-    return solve_group(case, selection, _WORKER["queue"], _WORKER["parent"])
+    return solve_group(case, selection, _WORKER["queue"], _WORKER["parent"], _WORKER["stop"])
 
 
 def solve_group(
-    case: Case, selection: list[int] | None, progress_queue=None, parent_pid: int | None = None
+    case: Case, selection: list[int] | None, progress_queue=None, parent_pid: int | None = None,
+    stop=None,
 ) -> dict:
     """Solve the bristles ``selection`` of ``case`` as one Exudyn system.
 
-    A worker process passes ``parent_pid``: if that process dies (Ctrl-C, kill), the worker
-    exits at once instead of computing on as an orphan.
+    A worker process passes ``parent_pid``: if that process dies (kill), the worker exits at
+    once instead of computing on as an orphan. If the event ``stop`` is set (Ctrl-C), the
+    solve ends at the next report and returns what it has, marked interrupted. The state is
+    checked for non-finite values at each report; a diverged solve stops there.
 
     Returns
     -------
@@ -83,11 +91,18 @@ def solve_group(
     end_time = scene.motion.end_time
     settings = dynamic_settings(case.solver, end_time, case.output.interval)
     reported = [0.0]
+    status = {"reason": ""}
 
     def report(mbs, t):
         if t - reported[0] >= PROGRESS_STEP:
             if parent_pid is not None and os.getppid() != parent_pid:
                 os._exit(1)  # orphaned: nobody will read the result
+            if stop is not None and stop.is_set():
+                status["reason"] = "interrupted"
+                return False
+            if not np.all(np.isfinite(mbs.systemData.GetODE2Coordinates())):
+                status["reason"] = f"non-finite state at t = {t:.6g} s"
+                return False
             if progress_queue is not None:
                 progress_queue.put(t - reported[0])
             reported[0] = t
@@ -99,8 +114,10 @@ def solve_group(
     try:
         completed = bool(scene.mbs.SolveDynamic(settings, storeSolver=True))
     except (exu.SolverError, RuntimeError) as err:
-        completed, message = False, str(err)
+        completed, message = False, " ".join(str(err).split())
     wall = time.perf_counter() - start
+    if status["reason"]:
+        completed, message = False, status["reason"]
     if progress_queue is not None:
         progress_queue.put(end_time - reported[0])
     drive = [np.asarray(scene.mbs.GetSensorStoredData(s)) for s in scene.drive_sensors]
@@ -108,16 +125,21 @@ def solve_group(
                  for sensors in scene.node_sensors]
     n = min(len(h) for h in [*drive, *(h for nodes in histories for h in nodes)])
     nodes = np.array([[h[:n, 1:4] for h in bristle] for bristle in histories])
+    reaction = np.column_stack([d[:n, 1] for d in drive]) if n else np.zeros((0, 3))
+    finite = np.all(np.isfinite(reaction), axis=1) & np.all(np.isfinite(nodes), axis=(0, 1, 3))
+    if not finite.all():  # never pass a diverged sample on as data
+        n = int(np.argmin(finite))
+        completed, message = False, message or "non-finite forces or positions"
     return {
         "time": drive[0][:n, 0],
-        "reaction": np.column_stack([d[:n, 1] for d in drive]),
-        "nodes": nodes.transpose(2, 0, 1, 3),
+        "reaction": reaction[:n],
+        "nodes": nodes[:, :, :n].transpose(2, 0, 1, 3),
         "statistics": _solver_statistics(scene.mbs),
-        "completed": completed and n > 0 and drive[0][n - 1, 0] >= end_time - 1e-9,
+        "completed": bool(completed and n > 0 and drive[0][n - 1, 0] >= end_time - 1e-9),
         "message": message,
         "wall_time": wall,
         "contacts": len(scene.contacts),
-        "handle_mass": scene.handle_mass,
+        "handle_mass": float(scene.handle_mass),
     }
 
 
@@ -127,36 +149,72 @@ def _groups(case: Case, count: int) -> list[list[int] | None]:
     return [[i] for i in range(count)]
 
 
-def _run_groups(case: Case, groups, workers: int, progress: bool, total: float) -> list[dict]:
+def _run_groups(case: Case, groups, workers: int, progress: bool, total: float,
+                directory: RunDirectory | None) -> tuple[list[dict | None], bool]:
+    """Solve ``groups`` (skipping those ``directory`` holds); store each as it finishes.
+
+    Returns the outputs (None for a group never started) and whether the run was
+    interrupted (Ctrl-C, or SIGTERM turned into one by the caller).
+    """
+    outputs: list[dict | None] = [None] * len(groups)
+    for index, output in (directory.stored_groups() if directory else {}).items():
+        outputs[index] = output
+    todo = [i for i in range(len(groups)) if outputs[i] is None]
     bar = tqdm(total=round(total, 2), disable=not progress, desc=f"{case.name} {case.model.kind}",
                bar_format="{l_bar}{bar}| {n:.2f}/{total:.2f} s simulated [{elapsed}<{remaining}]")
     share = 1.0 / len(groups)
-    if workers <= 1 or len(groups) == 1:
+    bar.update(total * share * (len(groups) - len(todo)))
+
+    def finished(index: int, output: dict) -> None:
+        outputs[index] = output
+        if directory is not None and output["completed"]:
+            directory.keep(index, output)
+
+    interrupted = False
+    if workers <= 1 or len(todo) <= 1:
         local = queue.SimpleQueue()
-        outputs = []
-        for group in groups:
-            outputs.append(solve_group(case, group, local))
-            while not local.empty():
-                bar.update(local.get() * share)
+        try:
+            for index in todo:
+                finished(index, solve_group(case, groups[index], local))
+                while not local.empty():
+                    bar.update(local.get() * share)
+        except KeyboardInterrupt:
+            interrupted = True
         bar.close()
-        return outputs
+        return outputs, interrupted
     context = multiprocessing.get_context("spawn")
-    updates = context.Queue()
-    with ProcessPoolExecutor(workers, mp_context=context, initializer=_init_worker,
-                             initargs=(updates, os.getpid())) as pool:
-        futures = [pool.submit(_solve_in_worker, case, group) for group in groups]
-        while not all(f.done() for f in futures):
+    updates, stop = context.Queue(), context.Event()
+    with ProcessPoolExecutor(min(workers, len(todo)), mp_context=context,
+                             initializer=_init_worker,
+                             initargs=(updates, os.getpid(), stop)) as pool:
+        futures = {pool.submit(_solve_in_worker, case, groups[i]): i for i in todo}
+        pending = set(futures)
+        while pending:
             try:
-                bar.update(updates.get(timeout=0.2) * share)
+                done, pending = wait(pending, timeout=0.2, return_when=FIRST_COMPLETED)
+                for future in done:
+                    if not future.cancelled():
+                        finished(futures[future], future.result())
             except queue.Empty:
                 pass
-        outputs = [f.result() for f in futures]
+                while True:
+                    bar.update(updates.get_nowait() * share)
+            except KeyboardInterrupt:
+                interrupted = True
+                stop.set()  # running solves return what they have at their next report
+                for future in pending:
+                    future.cancel()
     bar.close()
-    return outputs
+    return outputs, interrupted
 
 
-def simulate(case: Case, progress: bool = True, workers: int | None = None) -> Results:
-    """Build and solve ``case``; return its results (marked incomplete if a solve stopped).
+def simulate(case: Case, progress: bool = True, workers: int | None = None,
+             directory: RunDirectory | None = None) -> Results:
+    """Build and solve ``case``; return its results.
+
+    If a solve fails or the run is interrupted, the results hold the head force over the
+    time every group reached (nothing if a group never started) and ``metadata["status"]``
+    says "failed" or "interrupted" with the reason.
 
     Parameters
     ----------
@@ -164,28 +222,36 @@ def simulate(case: Case, progress: bool = True, workers: int | None = None) -> R
         Show a progress bar of the simulated time on standard error.
     workers : int, optional
         Processes for per-bristle solves (default: the number of cores).
+    directory : RunDirectory, optional
+        Where finished groups are stored as they finish, and read back when resuming.
     """
     bristles = head_bristles(case.head)
     motion, start_height = head_motion(case, bristles)
     groups = _groups(case, len(bristles))
     workers = workers or os.cpu_count() or 1
     start = time.perf_counter()
-    outputs = _run_groups(case, groups, workers, progress, motion.end_time)
+    outputs, interrupted = _run_groups(case, groups, workers, progress, motion.end_time,
+                                       directory)
     wall = time.perf_counter() - start
-    n = min(len(o["time"]) for o in outputs)
-    t = outputs[0]["time"][:n]
-    reaction = sum(o["reaction"][:n] for o in outputs)
-    nodes = np.concatenate([o["nodes"][:n] for o in outputs], axis=1)
+    ran = [o for o in outputs if o is not None]
+    n = min(len(o["time"]) for o in ran) if len(ran) == len(outputs) else 0
+    t = ran[0]["time"][:n] if ran else np.zeros(0)
+    reaction = sum(o["reaction"][:n] for o in ran) if n else np.zeros((0, 3))
+    nodes_per_bristle = case.model.segments if case.model.kind == "dfm" else 1
+    nodes = (np.concatenate([o["nodes"][:n] for o in outputs], axis=1) if n
+             else np.zeros((0, len(bristles), nodes_per_bristle, 3)))
     slide_axis = SLIDE_AXES[case.motion.direction]
     kinematics = np.array([handle_kinematics(motion, slide_axis, ti) for ti in t])
+    kinematics = kinematics.reshape(len(t), 3, 3)
     handle_position = kinematics[:, 0] + np.array([0.0, 0.0, start_height])
     # The drive's reaction is the constraint multiplier: the force the handle's coordinates
     # exert on the drive. The head's force on the surface is its negative, minus the m·a of
     # the handle of each group (each group has its own handle).
-    handle_mass = sum(o["handle_mass"] for o in outputs)
+    handle_mass = sum(o["handle_mass"] for o in ran)
     head_force = -reaction - handle_mass * kinematics[:, 2]
-    completed = all(o["completed"] for o in outputs)
-    messages = sorted({o["message"] for o in outputs if o["message"]})
+    completed = not interrupted and len(ran) == len(outputs) and all(o["completed"] for o in ran)
+    status = "completed" if completed else "interrupted" if interrupted else "failed"
+    message = "" if completed else _stop_message(case, outputs, interrupted)
     stride = max(1, round(case.output.shape_interval / case.output.interval))
     rows = np.arange(0, n, stride)
     roots = np.array([b.root for b in bristles])
@@ -193,13 +259,15 @@ def simulate(case: Case, progress: bool = True, workers: int | None = None) -> R
         [(handle_position[rows][:, None, :] + roots[None, :, :])[:, :, None, :], nodes[rows]],
         axis=2,
     )
-    statistics = {key: sum(o["statistics"].get(key, 0) for o in outputs)
-                  for key in outputs[0]["statistics"]}
+    statistics = {key: sum(o["statistics"].get(key, 0) for o in ran)
+                  for key in (ran[0]["statistics"] if ran else {})}
     derived = {
         "bristles": len(bristles),
-        "contact_elements": sum(o["contacts"] for o in outputs),
+        "contact_elements": sum(o["contacts"] for o in ran),
         "partition": case.solver.partition,
-        "systems_solved": len(outputs),
+        "systems_solved": len(groups),
+        "systems_finished": sum(bool(o["completed"]) for o in ran),
+        "systems_resumed": directory.resumed if directory else 0,
         "worker_processes": min(workers, len(groups)),
         "approach_distance_mm": motion.approach_distance,
         "slide_start_s": motion.slide_start,
@@ -215,11 +283,12 @@ def simulate(case: Case, progress: bool = True, workers: int | None = None) -> R
         "versions": {"exubrush": exubrush.__version__, "exudyn": exu.__version__,
                      "python": platform.python_version()},
         "solver_statistics": statistics,
-        "solver_wall_time_s_sum": sum(o["wall_time"] for o in outputs),
+        "solver_wall_time_s_sum": sum(o["wall_time"] for o in ran),
         "wall_time_s": wall,
         "simulated_time_s": float(t[-1]) if n else 0.0,
+        "status": status,
         "completed": completed,
-        "message": "; ".join(messages),
+        "message": message,
         "data_origin": "exubrush model output (simulation, not measurement)",
     }
     return Results(
@@ -232,6 +301,24 @@ def simulate(case: Case, progress: bool = True, workers: int | None = None) -> R
         shape_nodes=shape_nodes,
         metadata=metadata,
     )
+
+
+def _stop_message(case: Case, outputs: list[dict | None], interrupted: bool) -> str:
+    """Why the run stopped, when, and what to change."""
+    finished = sum(1 for o in outputs if o is not None and o["completed"])
+    if interrupted:
+        return (f"{finished} of {len(outputs)} bristle groups finished and are "
+                "kept: run the same command again to resume")
+    failed = [(i, o) for i, o in enumerate(outputs) if o is not None and not o["completed"]]
+    index, output = min(failed, key=lambda item: len(item[1]["time"]))
+    reached = float(output["time"][-1]) if len(output["time"]) else 0.0
+    reason = output["message"] or "the solver stopped before the end time"
+    return (f"group {index} stopped at t = {reached:.6g} s ({reason}); likely cause: no "
+            f"converged step down to solver.minimum_step_size ({case.solver.minimum_step_size:g}"
+            " s), e.g. a contact too stiff for the step or a violent snap-through; try a "
+            f"smaller solver.step_size (now {case.solver.step_size:g} s), a smaller "
+            "solver.minimum_step_size, a softer contact.stiffness or more damping "
+            "(head.material.damping_time)")
 
 
 def run_case(case: str, model: str = "dfm", overrides=(), progress: bool = True) -> Results:

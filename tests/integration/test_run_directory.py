@@ -1,0 +1,136 @@
+"""Results are never lost, half-written or mixed: kill, interrupt, resume, refuse.
+
+Runs are tiny (a few two-segment DFM bristles, a fraction of a period) so that a kill can
+land while some bristles are finished and others are still running.
+"""
+
+import csv
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+
+SMALL = ["run", "orthogonal", "--segments", "2", "--periods", "0.25", "--quiet",
+         "--set", "head.rows=1", "--set", "head.columns=6"]
+
+
+def _small(periods):
+    return [*SMALL[:5], periods, *SMALL[6:]]
+
+
+def _exubrush(*args, timeout=300):
+    return subprocess.run([sys.executable, "-m", "exubrush", *args], capture_output=True,
+                          text=True, timeout=timeout)
+
+
+def _start(out):
+    return subprocess.Popen([sys.executable, "-m", "exubrush", *SMALL, "--out", str(out)],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            start_new_session=True)
+
+
+def _wait_for_first_finished_group(out, process, limit=120.0):
+    start = time.monotonic()
+    while time.monotonic() - start < limit:
+        if list((out / ".checkpoint").glob("group-*.npz")):
+            return
+        assert process.poll() is None, "the run ended before any group was stored"
+        time.sleep(0.05)
+    raise AssertionError("no finished group appeared")
+
+
+def _read_forces(path):
+    with open(path, newline="") as handle:
+        rows = list(csv.reader(handle))
+    assert all(len(row) == len(rows[0]) for row in rows), "a truncated row"
+    return np.array([[float(cell) if cell else np.nan for cell in row] for row in rows[1:]])
+
+
+@pytest.fixture(scope="module")
+def uninterrupted(tmp_path_factory):
+    out = tmp_path_factory.mktemp("reference") / "run"
+    done = _exubrush(*SMALL, "--out", str(out))
+    assert done.returncode == 0, done.stderr
+    return _read_forces(out / "forces.csv")
+
+
+def test_sigterm_keeps_complete_marked_results_and_the_rerun_resumes(tmp_path, uninterrupted):
+    out = tmp_path / "run"
+    process = _start(out)
+    _wait_for_first_finished_group(out, process)
+    process.send_signal(signal.SIGTERM)
+    _, stderr = process.communicate(timeout=120)
+    assert process.returncode == 130, stderr
+    assert "Traceback" not in stderr and "run the same command again to resume" in stderr
+    meta = json.loads((out / "run.json").read_text())
+    assert meta["status"] == "interrupted" and not meta["completed"]
+    assert meta["derived"]["systems_finished"] >= 1
+    if (out / "forces.csv").exists():  # partial series: complete rows, up to where all got
+        partial = _read_forces(out / "forces.csv")
+        assert partial[-1, 0] == pytest.approx(meta["simulated_time_s"])
+        assert np.all(np.isfinite(partial[:, [0, 1, 3, 4]]))
+    again = _exubrush(*SMALL, "--out", str(out))
+    assert again.returncode == 0, again.stderr
+    assert "resuming:" in again.stderr
+    assert json.loads((out / "run.json").read_text())["status"] == "completed"
+    assert not (out / ".checkpoint").exists()
+    # stored groups are the exact arrays of their solve, and each group is deterministic
+    np.testing.assert_array_equal(_read_forces(out / "forces.csv"), uninterrupted)
+
+
+def test_sigkill_leaves_no_half_written_file_and_the_rerun_resumes(tmp_path, uninterrupted):
+    out = tmp_path / "run"
+    process = _start(out)
+    _wait_for_first_finished_group(out, process)
+    os.killpg(process.pid, signal.SIGKILL)  # the parent and its workers, no clean-up at all
+    process.communicate(timeout=60)
+    names = {p.name for p in out.iterdir()}
+    assert names == {".checkpoint"}, names  # nothing but the finished groups
+    for group in (out / ".checkpoint").glob("group-*.npz"):
+        with np.load(group) as data:
+            assert np.all(np.isfinite(data["reaction"]))
+    again = _exubrush(*SMALL, "--out", str(out))
+    assert again.returncode == 0, again.stderr
+    np.testing.assert_array_equal(_read_forces(out / "forces.csv"), uninterrupted)
+
+
+def test_existing_results_are_never_mixed(tmp_path):
+    out = tmp_path / "run"
+    first = _exubrush(*_small("0.02"), "--out", str(out))
+    assert first.returncode == 0, first.stderr
+    same = _exubrush(*_small("0.02"), "--out", str(out))
+    assert same.returncode == 2 and "already holds complete results" in same.stderr
+    other = _exubrush(*_small("0.03"), "--out", str(out))
+    assert other.returncode == 2 and "pass --overwrite" in other.stderr
+    replaced = _exubrush(*_small("0.03"), "--out", str(out), "--overwrite")
+    assert replaced.returncode == 0, replaced.stderr
+    meta = json.loads((out / "run.json").read_text())
+    assert meta["parameters"]["motion"]["periods"] == 0.03
+    (out / "notes.txt").write_text("mine")
+    foreign = _exubrush(*_small("0.02"), "--out", str(out), "--overwrite")
+    assert foreign.returncode == 2 and "files exubrush did not write (notes.txt)" in foreign.stderr
+    assert (out / "notes.txt").read_text() == "mine"
+
+
+def test_a_failed_solve_keeps_its_partial_results_with_the_reason(tmp_path):
+    out = tmp_path / "run"
+    # a contact 1000x stiffer than the paper's with no step reduction cannot converge
+    done = _exubrush("run", "orthogonal", "--segments", "2", "--periods", "0.2", "--quiet",
+                     "--set", "head.rows=1", "--set", "head.columns=1",
+                     "--set", "solver.step_size='0.01 s'",
+                     "--set", "solver.minimum_step_size='0.01 s'",
+                     "--set", "contact.stiffness='1e5 N/mm^1.3'", "--out", str(out))
+    assert done.returncode == 1
+    assert "Traceback" not in done.stderr
+    meta = json.loads((out / "run.json").read_text())
+    assert meta["status"] == "failed" and "stopped at t = " in meta["message"]
+    assert "solver.step_size" in meta["message"]  # says what to change
+    forces = _read_forces(out / "forces.csv")
+    assert forces[-1, 0] == pytest.approx(meta["simulated_time_s"])
+    assert 0.0 < forces[-1, 0] < meta["derived"]["end_time_s"]
+    assert np.all(np.isfinite(forces[:, [0, 1, 3, 4]]))
