@@ -68,6 +68,12 @@ def run(case, model, segments, periods, out, overrides, overwrite, quiet):
     results = simulate(parameters, progress=not quiet, directory=store)
     results.save(directory)
     meta = results.metadata
+    sanity = meta["sanity"]
+    if not sanity["within_bound"]:
+        click.echo(f"exubrush: warning: peak normal force {sanity['peak_normal_force_N']:.4g} N "
+                   f"exceeds the physical bound {sanity['normal_force_bound_N']:.4g} N (every "
+                   "bristle straight and fully compressed, x2): the result is not physical; "
+                   "see run.json 'sanity'", err=True)
     if meta["status"] == "completed":
         store.close()
         click.echo(f"completed: {meta['simulated_time_s']:.2f} s simulated in "

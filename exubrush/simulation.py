@@ -34,6 +34,7 @@ from exubrush.parameters.case import Case
 from exubrush.parameters.fields import to_plain
 from exubrush.results import Results
 from exubrush.rundir import RunDirectory
+from exubrush.sanity import normal_force_bound
 from exubrush.scene import SLIDE_AXES, build_scene, handle_kinematics, prb_parameters
 from exubrush.solver import dynamic_settings
 
@@ -90,6 +91,8 @@ def solve_group(
     scene = build_scene(case, selection)
     end_time = scene.motion.end_time
     settings = dynamic_settings(case.solver, end_time, case.output.interval)
+    bristles = head_bristles(case.head)
+    bound = normal_force_bound(case, [bristles[i] for i in selection] if selection else bristles)
     reported = [0.0]
     status = {"reason": ""}
 
@@ -102,6 +105,10 @@ def solve_group(
                 return False
             if not np.all(np.isfinite(mbs.systemData.GetODE2Coordinates())):
                 status["reason"] = f"non-finite state at t = {t:.6g} s"
+                return False
+            pressing = float(np.max(np.abs(mbs.GetSensorValues(scene.drive_sensors[2]))))
+            if pressing > bound:
+                status["reason"] = _beyond_bound(case, t, pressing, bound)
                 return False
             if progress_queue is not None:
                 progress_queue.put(t - reported[0])
@@ -127,9 +134,12 @@ def solve_group(
     nodes = np.array([[h[:n, 1:4] for h in bristle] for bristle in histories])
     reaction = np.column_stack([d[:n, 1] for d in drive]) if n else np.zeros((0, 3))
     finite = np.all(np.isfinite(reaction), axis=1) & np.all(np.isfinite(nodes), axis=(0, 1, 3))
-    if not finite.all():  # never pass a diverged sample on as data
-        n = int(np.argmin(finite))
-        completed, message = False, message or "non-finite forces or positions"
+    sane = finite & (np.abs(np.nan_to_num(reaction[:, 2])) <= bound)
+    if not sane.all():  # never pass a diverged or unphysical sample on as data
+        n = int(np.argmin(sane))
+        completed = False
+        message = message or ("non-finite forces or positions" if not finite.all()
+                              else "normal force beyond the physical bound")
     return {
         "time": drive[0][:n, 0],
         "reaction": reaction[:n],
@@ -141,6 +151,17 @@ def solve_group(
         "contacts": len(scene.contacts),
         "handle_mass": float(scene.handle_mass),
     }
+
+
+def _beyond_bound(case: Case, t: float, force: float, bound: float) -> str:
+    """Stop message for a force no real bristle can produce (exubrush.sanity)."""
+    if case.model.kind == "prb":
+        cause = ("the rigid PRB link jams where a real bristle would buckle (high friction or "
+                 "deep interference); use the DFM model for this case")
+    else:
+        cause = "a numerical blow-up; try a smaller solver.step_size or a softer contact"
+    return (f"normal force {force:.4g} N at t = {t:.6g} s exceeds the physical bound "
+            f"{bound:.4g} N (every bristle straight and fully compressed, x2): {cause}")
 
 
 def _groups(case: Case, count: int) -> list[list[int] | None]:
@@ -275,6 +296,8 @@ def simulate(case: Case, progress: bool = True, workers: int | None = None,
     }
     if case.model.kind == "prb":
         derived["prb_gamma"], derived["prb_stiffness_coefficient"] = prb_parameters(case)
+    bound = normal_force_bound(case, bristles)
+    peak = float(np.max(np.abs(head_force[:, 2]))) if n else 0.0
     metadata = {
         "case": case.name,
         "model": case.model.kind,
@@ -283,6 +306,8 @@ def simulate(case: Case, progress: bool = True, workers: int | None = None,
         "versions": {"exubrush": exubrush.__version__, "exudyn": exu.__version__,
                      "python": platform.python_version()},
         "solver_statistics": statistics,
+        "sanity": {"peak_normal_force_N": peak, "normal_force_bound_N": bound,
+                   "within_bound": peak <= bound},
         "solver_wall_time_s_sum": sum(o["wall_time"] for o in ran),
         "wall_time_s": wall,
         "simulated_time_s": float(t[-1]) if n else 0.0,
@@ -313,6 +338,8 @@ def _stop_message(case: Case, outputs: list[dict | None], interrupted: bool) -> 
     index, output = min(failed, key=lambda item: len(item[1]["time"]))
     reached = float(output["time"][-1]) if len(output["time"]) else 0.0
     reason = output["message"] or "the solver stopped before the end time"
+    if "physical bound" in reason:
+        return f"group {index} stopped at t = {reached:.6g} s: {reason}"
     return (f"group {index} stopped at t = {reached:.6g} s ({reason}); likely cause: no "
             f"converged step down to solver.minimum_step_size ({case.solver.minimum_step_size:g}"
             " s), e.g. a contact too stiff for the step or a violent snap-through; try a "

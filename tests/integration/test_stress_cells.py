@@ -1,0 +1,36 @@
+"""A reduced set of the stability stress matrix (validation/stress_matrix.py): each cell
+must finish with forces below the physical bound or stop with a clear message."""
+
+import importlib.util
+import sys
+from dataclasses import replace
+from pathlib import Path
+
+import pytest
+
+_PATH = Path(__file__).parents[2] / "validation" / "stress_matrix.py"
+_SPEC = importlib.util.spec_from_file_location("stress_matrix", _PATH)
+stress_matrix = importlib.util.module_from_spec(_SPEC)
+sys.modules["stress_matrix"] = stress_matrix  # dataclasses look their module up here
+_SPEC.loader.exec_module(stress_matrix)
+
+CELLS = {c.name: c for c in stress_matrix.cells(full=True)}
+REDUCED = ["orthogonal dfm: step x10", "orthogonal dfm: no damping",
+           "orthogonal dfm: contact k x100", "parallel prb: mu 1.5"]
+
+
+@pytest.mark.parametrize("name", REDUCED)
+def test_stress_cell_ends_sanely(name, tmp_path):
+    # a tenth of a period after the approach: the first stick, slip and sliding
+    cell = replace(CELLS[name], periods=0.1)
+    row = stress_matrix.run_cell(cell, tmp_path, limit=600.0)
+    assert row["verdict"] == "pass", row
+
+
+def test_a_diverging_cell_is_judged_by_its_message(tmp_path):
+    cell = stress_matrix.Cell("forced failure", (
+        "solver.step_size='0.01 s'", "solver.minimum_step_size='0.01 s'",
+        "contact.stiffness='1e5 N/mm^1.3'"), periods=0.1)
+    row = stress_matrix.run_cell(cell, tmp_path, limit=600.0)
+    assert row["outcome"] == "failed" and row["verdict"] == "pass", row
+    assert "stopped at t = " in row["why"]
