@@ -170,6 +170,15 @@ def _groups(case: Case, count: int) -> list[list[int] | None]:
     return [[i] for i in range(count)]
 
 
+def _drain(updates, bar, share: float) -> None:
+    """Move the workers' progress reports (simulated seconds) onto the bar."""
+    while True:
+        try:
+            bar.update(updates.get_nowait() * share)
+        except queue.Empty:
+            return
+
+
 def _run_groups(case: Case, groups, workers: int, progress: bool, total: float,
                 directory: RunDirectory | None) -> tuple[list[dict | None], bool]:
     """Solve ``groups`` (skipping those ``directory`` holds); store each as it finishes.
@@ -216,10 +225,7 @@ def _run_groups(case: Case, groups, workers: int, progress: bool, total: float,
                 for future in done:
                     if not future.cancelled():
                         finished(futures[future], future.result())
-            except queue.Empty:
-                pass
-                while True:
-                    bar.update(updates.get_nowait() * share)
+                _drain(updates, bar, share)
             except KeyboardInterrupt:
                 interrupted = True
                 stop.set()  # running solves return what they have at their next report

@@ -35,6 +35,14 @@ def test_small_run_writes_complete_results(tmp_path):
     assert (out / "forces.png").stat().st_size > 10_000
 
 
+def test_progress_bar_reaches_the_end(tmp_path):
+    done = _exubrush("run", "orthogonal", "--segments", "2", "--periods", "0.05",
+                     "--set", "head.rows=1", "--set", "head.columns=2", "--out", str(tmp_path))
+    assert done.returncode == 0, done.stderr
+    last = done.stderr.replace("\r", "\n").strip().splitlines()[-1]
+    assert "100%" in last and "1.80/1.80 s simulated" in last, last
+
+
 def test_case_prints_toml_that_runs_back(tmp_path):
     done = _exubrush("case", "orthogonal")
     assert done.returncode == 0
