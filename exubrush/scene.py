@@ -22,6 +22,7 @@ from exubrush.models.howell import howell_parameters
 from exubrush.models.prb import add_prb_bristle
 from exubrush.motion import HeadMotion, head_motion
 from exubrush.parameters.case import Case
+from exubrush.reference.howell_fit import fit_prb_parameters
 
 # the handle is a stiff block whose mass only enters the drive reaction, from which the
 # exact inertia force m·a of the prescribed motion is removed again (exubrush.results)
@@ -32,10 +33,15 @@ SLIDE_AXES = {"orthogonal": np.array([0.0, 1.0, 0.0]), "parallel": np.array([1.0
 
 
 def prb_parameters(case: Case) -> tuple[float, float]:
-    """(γ, K_Θ) for the PRB model: Howell's table at n = 1/μ_d, or the explicit values."""
-    if case.model.prb_parameters == "explicit":
+    """(γ, K_Θ) for the PRB model at n = case.load_ratio(): Howell's table, fitted to the
+    exact elastica, or the explicit values (model.prb_parameters)."""
+    source = case.model.prb_parameters
+    if source == "explicit":
         return case.model.prb_gamma, case.model.prb_stiffness_coefficient
-    return howell_parameters(1.0 / case.contact.dynamic_friction)
+    if source == "fitted":
+        fit = fit_prb_parameters(case.load_ratio())
+        return fit.gamma, fit.stiffness_coefficient
+    return howell_parameters(case.load_ratio())
 
 
 def friction_window(case: Case, motion: HeadMotion) -> tuple[float, float] | None:

@@ -302,6 +302,8 @@ def simulate(case: Case, progress: bool = True, workers: int | None = None,
     }
     if case.model.kind == "prb":
         derived["prb_gamma"], derived["prb_stiffness_coefficient"] = prb_parameters(case)
+        if case.model.prb_parameters != "explicit":
+            derived["prb_load_ratio"] = case.load_ratio()
     bound = normal_force_bound(case, bristles)
     peak = float(np.max(np.abs(head_force[:, 2]))) if n else 0.0
     metadata = {

@@ -112,8 +112,14 @@ class Model:
     segments: int = param(6, "DFM: rigid bodies per bristle", above=0)
     prb_parameters: str = param(
         "howell-table",
-        "PRB: 'howell-table' interpolates gamma, K_theta at n = 1/mu_d; 'explicit' uses below",
-        "text", choices=("howell-table", "explicit"),
+        "PRB: 'howell-table' interpolates gamma, K_theta in Howell's table at n; 'fitted' "
+        "fits them to the exact elastica at n (exubrush.reference.howell_fit); 'explicit' "
+        "uses prb_gamma and prb_stiffness_coefficient",
+        "text", choices=("howell-table", "fitted", "explicit"),
+    )
+    prb_load_ratio: str = param(
+        "1/mu_d", "PRB: load ratio n = axial / transverse tip force: '1/mu_d' (a tip sliding "
+        "with Coulomb friction) or a number", "text",
     )
     prb_gamma: float = param(0.8329, "PRB: characteristic radius factor gamma (explicit)",
                              above=0.0, below=1.0)
@@ -215,14 +221,32 @@ class Case:
     solver: Solver = field(default_factory=Solver)
     output: Output = field(default_factory=Output)
 
+    def load_ratio(self) -> float:
+        """The PRB load ratio n (model.prb_load_ratio; '1/mu_d' from the contact law)."""
+        text = self.model.prb_load_ratio.strip()
+        if text == "1/mu_d":
+            if self.contact.dynamic_friction <= 0:
+                raise ValueError("model.prb_load_ratio '1/mu_d' is infinite for "
+                                 "contact.dynamic_friction = 0; set model.prb_load_ratio to a "
+                                 "number or model.prb_parameters = 'explicit'")
+            return 1.0 / self.contact.dynamic_friction
+        try:
+            return float(text)
+        except ValueError:
+            raise ValueError(f"model.prb_load_ratio {text!r} is neither '1/mu_d' nor a "
+                             "number") from None
+
     def check(self) -> None:
         """Rules that tie sections together (PRB parameters, friction blending)."""
         prb = self.model.kind == "prb"
-        table = self.model.prb_parameters == "howell-table"
-        if prb and table and self.contact.dynamic_friction <= 0:
-            raise ValueError("model.prb_parameters 'howell-table' uses n = 1/contact."
-                             "dynamic_friction, which is infinite for mu_d = 0; set "
-                             "model.prb_parameters = 'explicit'")
+        source = self.model.prb_parameters
+        if prb and source != "explicit":
+            n = self.load_ratio()
+            low = 0.0 if source == "howell-table" else -1.0
+            if not low <= n <= 10.0:
+                raise ValueError(f"PRB load ratio n = {n:.4g} is outside [{low:g}, 10] of "
+                                 f"model.prb_parameters '{source}'; set the PRB parameters "
+                                 "explicitly")
         blended = self.motion.approach_friction == "off" or (
             prb and self.motion.approach_friction == "auto")
         if blended and self.motion.hold_duration <= 0.0:

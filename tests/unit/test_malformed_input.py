@@ -58,7 +58,11 @@ MALFORMED = [
     ("set", ["motion.profile='csv'"], "profile 'csv' needs csv_file"),
     ("set", ["output.shape_interval='0.001 s'"], "shape_interval (0.001 s) must not be shorter"),
     ("set", ["model.kind='prb'", "contact.dynamic_friction=0", "contact.static_friction=0"],
-     "infinite for mu_d = 0"),
+     "'1/mu_d' is infinite for contact.dynamic_friction = 0"),
+    ("set", ["model.kind='prb'", "model.prb_load_ratio='-2'"],
+     "PRB load ratio n = -2 is outside [0, 10] of model.prb_parameters 'howell-table'"),
+    ("set", ["model.kind='prb'", "model.prb_load_ratio='many'"],
+     "model.prb_load_ratio 'many' is neither '1/mu_d' nor a number"),
     ("set", ["model.kind='prb'", "motion.hold_duration='0 s'"], "set motion.hold_duration > 0"),
     ("set", ["motion.interaction_distance='10 mm'"], "no bristle would touch"),
     # case files
