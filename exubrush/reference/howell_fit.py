@@ -116,3 +116,21 @@ def fit_prb_parameters(load_ratio: float) -> PrbFit:
     perpendicular = transverse * (np.cos(theta) + load_ratio * np.sin(theta))
     k_theta = float(np.sum(perpendicular[inside] * theta[inside]) / np.sum(theta[inside] ** 2))
     return PrbFit(gamma, k_theta, angle_range)
+
+
+def comparison_table() -> str:
+    """Markdown table of the fit against Howell's table (``python -m ...howell_fit``)."""
+    from exubrush.models.howell import HOWELL_TABLE
+
+    lines = ["| n | γ fitted | γ Howell | difference | K_Θ fitted | K_Θ Howell | Θ range (0.5 %) |",
+             "| --- | --- | --- | --- | --- | --- | --- |"]
+    for n, gamma, k_theta in HOWELL_TABLE:
+        fit = fit_prb_parameters(float(n))
+        lines.append(f"| {n:g} | {fit.gamma:.4f} | {gamma:.4f} | {fit.gamma - gamma:+.4f} | "
+                     f"{fit.stiffness_coefficient:.3f} | {k_theta:.3f} | "
+                     f"{np.degrees(fit.angle_range):.1f}° |")
+    return "\n".join(lines)
+
+
+if __name__ == "__main__":
+    print(comparison_table())
