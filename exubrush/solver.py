@@ -41,8 +41,14 @@ def dynamic_settings(solver: Solver, end_time: float, output_interval: float):
     ti.newton.absoluteTolerance = solver.absolute_tolerance
     ti.newton.adaptInitialResidual = False
     settings.solution.sensors.writePeriod = output_interval
-    # a head has thousands of coordinates with a block-sparse Jacobian
-    settings.linearSolver.solverType = exu.LinearSolverType.EigenSparse
-    settings.linearSolver.reuseAnalyzedPattern = True
+    if solver.partition == "coupled":
+        # a whole head has thousands of coordinates with a block-sparse Jacobian
+        settings.linearSolver.solverType = exu.LinearSolverType.EigenSparse
+        settings.linearSolver.reuseAnalyzedPattern = True
+    else:
+        # one bristle is small, and the dense LU lets Exudyn cut the step when the Jacobian
+        # turns singular (a PRB link swinging round at a reversal, where the Stribeck
+        # friction's negative slope cancels the inertia); EigenSparse stops the run there
+        settings.linearSolver.solverType = exu.LinearSolverType.EXUdense
     settings.parallel.numberOfThreads = 1
     return settings

@@ -27,6 +27,14 @@ def test_stress_cell_ends_sanely(name, tmp_path):
     assert row["verdict"] == "pass", row
 
 
+def test_prb_default_head_passes_a_whole_reversal(tmp_path):
+    # regression: with the sparse solver a PRB link swinging round its cone at the second
+    # reversal (t = 10.6 s) made the Jacobian singular and the run stopped
+    cell = replace(CELLS["orthogonal prb: default"], periods=1.0)
+    row = stress_matrix.run_cell(cell, tmp_path, limit=600.0)
+    assert row["outcome"] == "completed", row
+
+
 def test_a_diverging_cell_is_judged_by_its_message(tmp_path):
     cell = stress_matrix.Cell("forced failure", (
         "solver.step_size='0.01 s'", "solver.minimum_step_size='0.01 s'",
