@@ -192,28 +192,34 @@ class HeadMotion:
         return self.slide.evaluate(t - self.slide_start)
 
 
-def head_motion(case: Case, bristles: list[BristleGeometry]) -> tuple[HeadMotion, float]:
-    """The head's motion and the start height of the roots' surface above the plane [mm].
+def start_height(case: Case, bristles: list[BristleGeometry]) -> float:
+    """Height of the roots' surface above the plane at t = 0 [mm].
 
-    Raises ValueError if the interaction distance is not below the start height, i.e. no
-    bristle would ever touch the surface.
+    Raises ValueError if the interaction distance is not below it, i.e. no bristle would
+    ever touch the surface.
     """
     m = case.motion
-    lowest = min(b.lowest_reach for b in bristles)
-    start_height = m.approach_clearance - lowest
-    if start_height <= m.interaction_distance:
+    height = m.approach_clearance - min(b.lowest_reach for b in bristles)
+    if height <= m.interaction_distance:
         raise ValueError(
             f"motion.interaction_distance ({m.interaction_distance:g} mm) is not below the "
-            f"start height of the roots ({start_height:g} mm): no bristle would touch; "
+            f"start height of the roots ({height:g} mm): no bristle would touch; "
             "reduce it below the bristle length plus tip radius"
         )
+    return height
+
+
+def head_motion(case: Case, bristles: list[BristleGeometry]) -> tuple[HeadMotion, float]:
+    """The head's motion and the start height of the roots' surface above the plane [mm]."""
+    m = case.motion
+    height = start_height(case, bristles)
     slide = read_slide_csv(m.csv_file) if m.profile == "csv" else SineSlide(
         m.amplitude, m.period, m.periods
     )
     motion = HeadMotion(
-        approach_distance=start_height - m.interaction_distance,
+        approach_distance=height - m.interaction_distance,
         approach_duration=m.approach_duration,
         hold_duration=m.hold_duration,
         slide=slide,
     )
-    return motion, start_height
+    return motion, height

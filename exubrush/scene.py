@@ -17,7 +17,7 @@ from exudyn.rigidBodyUtilities import InertiaCuboid
 
 from exubrush.contact.exudyn_contact import add_tip_contact, contact_user_function
 from exubrush.models.dfm import add_dfm_bristle
-from exubrush.models.geometry import can_reach, head_bristles
+from exubrush.models.geometry import BristleGeometry, can_reach, head_bristles
 from exubrush.models.howell import howell_parameters
 from exubrush.models.prb import add_prb_bristle
 from exubrush.motion import HeadMotion, head_motion
@@ -74,6 +74,7 @@ class Scene:
     motion: HeadMotion
     slide_axis: np.ndarray
     handle_mass: float
+    bristles: list[BristleGeometry]
     drive_sensors: list = field(default_factory=list)
     node_sensors: list = field(default_factory=list)
     contacts: list = field(default_factory=list)
@@ -126,7 +127,8 @@ def build_scene(case: Case, selection: list[int] | None = None) -> Scene:
         nodeType=exu.NodeType.RotationRxyz, gravity=[0.0, 0.0, 0.0], show=False,
         returnDict=True,
     )
-    scene = Scene(SC, mbs, motion, SLIDE_AXES[case.motion.direction], handle_inertia.Mass())
+    scene = Scene(SC, mbs, motion, SLIDE_AXES[case.motion.direction], handle_inertia.Mass(),
+                  bristles)
     _add_drive(scene, handle["nodeNumber"])
     plane = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=ground, localPosition=[0, 0, 0]))
     laws = {}

@@ -91,8 +91,7 @@ def solve_group(
     scene = build_scene(case, selection)
     end_time = scene.motion.end_time
     settings = dynamic_settings(case.solver, end_time, case.output.interval)
-    bristles = head_bristles(case.head)
-    bound = normal_force_bound(case, [bristles[i] for i in selection] if selection else bristles)
+    bound = normal_force_bound(case, scene.bristles)
     reported = [0.0]
     status = {"reason": ""}
 
@@ -206,8 +205,7 @@ def _run_groups(case: Case, groups, workers: int, progress: bool, total: float,
         try:
             for index in todo:
                 finished(index, solve_group(case, groups[index], local))
-                while not local.empty():
-                    bar.update(local.get() * share)
+                _drain(local, bar, share)
         except KeyboardInterrupt:
             interrupted = True
         bar.close()

@@ -7,7 +7,7 @@ from dataclasses import replace
 from pathlib import Path
 
 from exubrush.models.geometry import head_bristles
-from exubrush.motion import head_motion, read_slide_csv
+from exubrush.motion import read_slide_csv, start_height
 from exubrush.parameters.case import BUILT_IN_CASES, Case
 from exubrush.parameters.fields import (
     ParameterError,
@@ -47,7 +47,7 @@ def load_case(case: str, overrides: list[str] | tuple[str, ...] = ()) -> Case:
         folder = Path(case).parent if case.endswith(".toml") else None
         built = _with_checked_slide_csv(built, folder)
     try:
-        head_motion(built, head_bristles(built.head))
+        start_height(built, head_bristles(built.head))
     except ValueError as err:
         raise ParameterError(str(err)) from None
     return built
