@@ -1,4 +1,4 @@
-"""Command line: ``exubrush run CASE`` and ``exubrush case CASE``."""
+"""Command line: ``exubrush run``, ``case``, ``compare`` and ``frames``."""
 
 from __future__ import annotations
 
@@ -7,6 +7,7 @@ import sys
 from pathlib import Path
 
 import click
+import numpy as np
 
 from exubrush.parameters.fields import ParameterError, to_toml
 from exubrush.parameters.io import load_case
@@ -109,3 +110,65 @@ def case(case, overrides):
         click.echo(to_toml(load_case(case, overrides)), nl=False)
     except (ParameterError, UnitError) as err:
         _fail(str(err))
+
+
+@main.command()
+@click.argument("results_dir", type=click.Path())
+@click.argument("measured_csv", type=click.Path())
+@click.option("--out", type=click.Path(file_okay=False),
+              help="Where to write the comparison [default: RESULTS_DIR/compare-CSVNAME].")
+@click.option("--align", "alignment", type=click.Choice(["time", "position"]), default="time",
+              show_default=True, help="time: measured time + --time-offset is simulation "
+              "time; position: fit the offset so that the slider positions match.")
+@click.option("--time-offset", type=float, default=0.0, show_default=True, metavar="SECONDS",
+              help="Added to the measured time (the start of the search with --align position).")
+@click.option("--flat-speed", type=float, default=0.8, show_default=True, metavar="FRACTION",
+              help="Flat zone: slide speed at least FRACTION of the stroke's peak speed.")
+@click.option("--invert", multiple=True,
+              type=click.Choice(["slider_position", "normal_force", "tangential_force"]),
+              help="Flip the sign of a measured channel recorded the other way (repeatable).")
+def compare(results_dir, measured_csv, out, alignment, time_offset, flat_speed, invert):
+    """Compare the forces of RESULTS_DIR with a measured CSV.
+
+    MEASURED_CSV has the columns time, slider_position, normal_force and tangential_force,
+    each with its unit in the header, e.g. 'normal_force [mN]' (see validation/data/README.md).
+    Writes comparison.md, comparison.json and compare_*.png.
+    """
+    from exubrush.compare_report import write_comparison
+    from exubrush.experiment import Alignment, ForceSeries, align, read_measured_csv, strokes
+    from exubrush.experiment import compare as compare_series
+    from exubrush.results import ResultsError, read_results
+
+    try:
+        results = read_results(results_dir)
+        measured = read_measured_csv(measured_csv)
+        simulated = ForceSeries(results.time, results.slider_position, results.normal_force,
+                                results.tangential_force)
+        settings = Alignment(time_offset=time_offset, by_position=alignment == "position",
+                             signs=tuple((channel, -1.0) for channel in invert))
+        aligned = align(simulated, measured, settings)
+        velocity = np.gradient(simulated.slider_position, simulated.time)
+        found = strokes(simulated.time, velocity, flat_speed)
+    except (ResultsError, ValueError) as err:
+        _fail(str(err))
+    comparison = compare_series(aligned, found)
+    directory = Path(out or Path(results_dir) / f"compare-{Path(measured_csv).stem}")
+    sources = {"simulation": str(results_dir), "measurement": str(measured_csv),
+               "model": results.metadata.get("model", "?"),
+               "alignment": ("fitted to the slider positions" if settings.by_position
+                             else "given")}
+    if results.metadata.get("status", "completed") != "completed":
+        click.echo(f"exubrush: warning: the run in {results_dir} is "
+                   f"{results.metadata.get('status')}; only its saved part is compared",
+                   err=True)
+    written = write_comparison(aligned, comparison, directory, sources, flat_speed)
+    largest = comparison["largest_flat_difference"]
+    if largest["normal_force"] is None:
+        click.echo("exubrush: warning: no stroke has its whole flat zone inside the "
+                   "measurement; check --time-offset or use --align position", err=True)
+    else:
+        click.echo(f"{len(comparison['strokes'])} strokes compared; largest flat-zone "
+                   "difference (simulation - measurement): "
+                   f"F_n {100 * largest['normal_force']:+.1f} %, "
+                   f"F_t {100 * largest['tangential_force']:+.1f} %")
+    click.echo(f"written to {directory}/: {', '.join(written)}")

@@ -12,7 +12,6 @@ ends), then holds for ``hold`` seconds before sliding starts.
 
 from __future__ import annotations
 
-import csv
 import math
 from dataclasses import dataclass
 from pathlib import Path
@@ -20,6 +19,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 from scipy.interpolate import CubicSpline
+
+from exubrush.tables import check_time_axis, read_unit_table
 
 if TYPE_CHECKING:
     from exubrush.models.geometry import BristleGeometry
@@ -84,13 +85,7 @@ class TabulatedSlide:
         positions = np.asarray(positions, dtype=float)
         if times.ndim != 1 or times.shape != positions.shape or times.size < 2:
             raise ValueError("a slide table needs at least two (time, position) rows")
-        if not np.all(np.isfinite(times)) or not np.all(np.isfinite(positions)):
-            raise ValueError("a slide table must hold finite numbers only")
-        steps = np.flatnonzero(np.diff(times) <= 0.0)
-        if steps.size:
-            k = steps[0] + 1
-            raise ValueError(f"times must increase strictly, but sample {k + 1} is at "
-                             f"{times[k]:g} s after {times[k - 1]:g} s")
+        check_time_axis(times, positions)
         self._t0 = float(times[0])
         self._spline = CubicSpline(times - times[0], positions - positions[0])
         self.duration = float(times[-1] - times[0])
@@ -104,44 +99,12 @@ class TabulatedSlide:
 def read_slide_csv(path: str | Path) -> TabulatedSlide:
     """Read a slide profile CSV with header ``time [s]`` and ``slider_position [mm]``.
 
-    Other columns are ignored; the unit in each header is converted (e.g. ``[ms]``,
-    ``[m]``), and a header without a unit is refused.
+    Other columns and ``#`` comment lines are ignored; the unit in each header is
+    converted (e.g. ``[ms]``, ``[m]``), and a header without a unit is refused
+    (:func:`exubrush.tables.read_unit_table`).
     """
-    from exubrush.units import UnitError, to_internal
-
-    path = Path(path)
     name = f"slide CSV {str(path)!r}"
-    if not path.is_file():
-        raise ValueError(f"{name} does not exist")
-    with path.open(newline="") as handle:
-        rows = [row for row in csv.reader(handle) if any(cell.strip() for cell in row)]
-    if len(rows) < 3:
-        raise ValueError(f"{name} needs a header and at least two rows, found {len(rows)} lines")
-    columns = {}
-    for index, name_cell in enumerate(rows[0]):
-        label, _, unit = name_cell.strip().partition("[")
-        columns[label.strip()] = (index, unit.rstrip("]").strip())
-    data = {}
-    for label, target in (("time", "s"), ("slider_position", "mm")):
-        if label not in columns:
-            raise ValueError(f"{name} has no column '{label} [unit]'")
-        index, unit = columns[label]
-        if not unit:
-            raise ValueError(f"{name}: column '{label}' has no unit; write '{label} [{target}]'")
-        try:
-            factor = to_internal(f"1 {unit}", target)
-        except UnitError as err:
-            raise ValueError(f"{name}: column '{label}': {err}") from None
-        values = []
-        for line, row in enumerate(rows[1:], start=2):
-            try:
-                values.append(float(row[index]))
-            except (ValueError, IndexError):
-                cell = row[index] if index < len(row) else ""
-                raise ValueError(
-                    f"{name}: line {line}, column '{label}': {cell!r} is not a number"
-                ) from None
-        data[label] = np.array(values) * factor
+    data = read_unit_table(path, {"time": "s", "slider_position": "mm"}, "slide CSV")
     try:
         return TabulatedSlide(data["time"], data["slider_position"])
     except ValueError as err:

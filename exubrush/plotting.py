@@ -6,6 +6,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
 
 
 def plot_forces(results, target) -> None:
@@ -29,3 +30,86 @@ def plot_forces(results, target) -> None:
     fig.tight_layout()
     fig.savefig(target, format="png", dpi=120)
     plt.close(fig)
+
+
+def _series_axes(axes, x, aligned, xlabel):
+    """F_n, F_t and |F_t|/F_n of simulation and measurement against ``x`` on three axes."""
+    for series, label, style in ((aligned.measured, "measured", dict(color="0.3", lw=0.8)),
+                                 (aligned.simulated, "simulation", dict(color="tab:blue",
+                                                                        lw=1.0))):
+        normal = series.normal_force
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ratio = np.where(normal > 1e-6, np.abs(series.tangential_force) / normal, np.nan)
+        axes[0].plot(x, normal, label=label, **style)
+        axes[1].plot(x, series.tangential_force, **style)
+        axes[2].plot(x, ratio, **style)
+    axes[0].set_ylabel("normal force [N]")
+    axes[1].set_ylabel("tangential force [N]")
+    axes[2].set_ylabel("|F_t| / F_n [-]")
+    axes[2].set_xlabel(xlabel)
+    axes[0].legend(loc="best", fontsize=8)
+    for axis in axes:
+        axis.grid(True, alpha=0.3)
+
+
+def plot_comparison(aligned, comparison, title, directory) -> list[str]:
+    """Write the whole-run, flat-zone and one-period comparison plots; return file names.
+
+    Flat zone: the last stroke with a complete flat zone (shaded). One period: the last two
+    consecutive strokes that the measurement covers, reversal to reversal, forces against
+    slider position.
+    """
+    names = []
+    rows = comparison["strokes"]
+    distance = np.concatenate([[0.0], np.cumsum(np.abs(np.diff(aligned.slider_position)))])
+    fig, axes = plt.subplots(3, 1, figsize=(9, 8), sharex=True)
+    _series_axes(axes, distance, aligned, "travelled distance [mm] (simulated slider)")
+    for row in rows:
+        mask = (aligned.time >= row["flat_start"]) & (aligned.time <= row["flat_end"])
+        for axis in axes:
+            axis.axvspan(distance[mask][0], distance[mask][-1], color="tab:green", alpha=0.08)
+    fig.suptitle(f"{title}: whole run (flat zones shaded)")
+    names.append(_save(fig, directory, "compare_run.png"))
+    if rows:
+        last = rows[-1]
+        margin = 0.15 * (last["flat_end"] - last["flat_start"])
+        mask = ((aligned.time >= last["flat_start"] - margin)
+                & (aligned.time <= last["flat_end"] + margin))
+        fig, axes = plt.subplots(3, 1, figsize=(9, 8), sharex=True)
+        _series_axes(axes, aligned.time[mask], _masked(aligned, mask), "time [s]")
+        for axis in axes:
+            axis.axvspan(last["flat_start"], last["flat_end"], color="tab:green", alpha=0.08)
+        fig.suptitle(f"{title}: flat zone of stroke {last['index']}")
+        names.append(_save(fig, directory, "compare_flat.png"))
+    if len(rows) >= 2 and rows[-1]["index"] == rows[-2]["index"] + 1:
+        first, last = rows[-2], rows[-1]
+        mask = ((aligned.time >= first["start"]) & (aligned.time <= last["end"]))
+        fig, axes = plt.subplots(3, 1, figsize=(9, 8), sharex=True)
+        _series_axes(axes, aligned.slider_position[mask], _masked(aligned, mask),
+                     "slider position [mm] (simulated slider)")
+        fig.suptitle(f"{title}: one period (strokes {first['index']} and {last['index']})")
+        names.append(_save(fig, directory, "compare_period.png"))
+    return names
+
+
+def _masked(aligned, mask):
+    from dataclasses import replace
+
+    def cut(series):
+        return replace(series, **{k: getattr(series, k)[mask] for k in
+                                  ("time", "slider_position", "normal_force",
+                                   "tangential_force")})
+
+    return replace(aligned, time=aligned.time[mask], slider_position=aligned.slider_position[mask],
+                   slide_velocity=aligned.slide_velocity[mask],
+                   simulated=cut(aligned.simulated), measured=cut(aligned.measured))
+
+
+def _save(fig, directory, name) -> str:
+    from exubrush.results import atomic_file
+
+    fig.tight_layout()
+    with atomic_file(directory / name, "wb") as handle:
+        fig.savefig(handle, format="png", dpi=110)
+    plt.close(fig)
+    return name

@@ -93,23 +93,68 @@ class Results:
             self._save_metadata(directory)
             return directory
         columns = self.columns()
-        with _atomic(directory / "forces.csv", "w", newline="") as handle:
+        with atomic_file(directory / "forces.csv", "w", newline="") as handle:
             writer = csv.writer(handle)
             writer.writerow(columns)
             for row in zip(*columns.values(), strict=True):
                 writer.writerow(["" if np.isnan(v) else f"{v:.9g}" for v in row])
-        with _atomic(directory / "shapes.npz", "wb") as handle:
+        with atomic_file(directory / "shapes.npz", "wb") as handle:
             np.savez_compressed(handle, time=self.shape_time, nodes=self.shape_nodes)
         from exubrush.plotting import plot_forces
 
-        with _atomic(directory / "forces.png", "wb") as handle:
+        with atomic_file(directory / "forces.png", "wb") as handle:
             plot_forces(self, handle)
         self._save_metadata(directory)
         return directory
 
     def _save_metadata(self, directory: Path) -> None:
-        with _atomic(directory / "run.json", "w") as handle:
+        with atomic_file(directory / "run.json", "w") as handle:
             json.dump(self.metadata, handle, indent=2, default=_json_default)
+
+
+class ResultsError(ValueError):
+    """A result directory is missing, incomplete or not written by exubrush."""
+
+
+def read_results(directory: str | Path) -> Results:
+    """Read a result directory written by :meth:`Results.save` (forces, shapes, run.json).
+
+    Raises
+    ------
+    ResultsError
+        If the directory or one of its files is missing or unreadable; the message says
+        which and how the directory is made.
+    """
+    from exubrush.tables import read_unit_table
+
+    directory = Path(directory)
+    meta_path = directory / "run.json"
+    if not meta_path.is_file():
+        raise ResultsError(f"{str(directory)!r} holds no run.json: it is not an exubrush "
+                           "result directory (make one with 'exubrush run CASE --out DIR')")
+    try:
+        metadata = json.loads(meta_path.read_text())
+    except json.JSONDecodeError as err:
+        raise ResultsError(f"{str(meta_path)!r} is not valid JSON ({err})") from None
+    if not (directory / "forces.csv").is_file():
+        raise ResultsError(f"{str(directory)!r} has no forces.csv (run status "
+                           f"{metadata.get('status', 'unknown')!r}): nothing to read")
+    units = {name: unit for name, unit in CSV_COLUMNS if name in _SERIES}
+    try:
+        series = read_unit_table(directory / "forces.csv", units, "result file")
+    except ValueError as err:
+        raise ResultsError(str(err)) from None
+    shapes_path = directory / "shapes.npz"
+    if shapes_path.is_file():
+        with np.load(shapes_path) as shapes:
+            shape_time, shape_nodes = shapes["time"], shapes["nodes"]
+    else:
+        shape_time, shape_nodes = np.zeros(0), np.zeros((0, 0, 0, 3))
+    return Results(**series, shape_time=shape_time, shape_nodes=shape_nodes,
+                   metadata=metadata)
+
+
+_SERIES = ("time", "slider_position", "normal_force", "tangential_force", "head_height")
 
 
 def _json_default(value):
@@ -120,7 +165,7 @@ def _json_default(value):
     raise TypeError(f"cannot write {type(value).__name__} to JSON")
 
 
-class _atomic:
+class atomic_file:
     """Open a temporary file beside ``path`` and rename it onto ``path`` on success."""
 
     def __init__(self, path: Path, mode: str, **kwargs):

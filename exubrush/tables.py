@@ -1,0 +1,91 @@
+"""Reading unit-labelled CSV tables (slide profiles, measured forces).
+
+A table is a CSV file whose header names every column with its unit in brackets, e.g.
+``time [s],slider_position [mm],normal_force [N]``. Blank lines and lines starting with
+``#`` (provenance, comments) are skipped. A column without a unit is refused, not guessed:
+the unit is converted with pint, so ``[ms]``, ``[m]`` or ``[mN]`` are read as well.
+"""
+
+from __future__ import annotations
+
+import csv
+from pathlib import Path
+
+import numpy as np
+
+
+def read_unit_table(path: str | Path, columns: dict[str, str], what: str) -> dict[str, np.ndarray]:
+    """Read the named columns of a unit-labelled CSV, converted to internal units.
+
+    Parameters
+    ----------
+    path : str or Path
+        The CSV file.
+    columns : dict
+        Column label -> internal unit, e.g. ``{"time": "s", "normal_force": "N"}``. Other
+        columns of the file are ignored.
+    what : str
+        What the file is, for messages (e.g. ``"slide CSV"``).
+
+    Returns
+    -------
+    dict
+        Label -> values (float array) in the internal unit.
+
+    Raises
+    ------
+    ValueError
+        With the file, line and column at fault: missing file, too few rows, a missing
+        column or unit, a unit of the wrong dimension, a cell that is not a number.
+    """
+    from exubrush.units import UnitError, to_internal
+
+    path = Path(path)
+    name = f"{what} {str(path)!r}"
+    if not path.is_file():
+        raise ValueError(f"{name} does not exist")
+    with path.open(newline="") as handle:
+        rows = [
+            (line, row)
+            for line, row in enumerate(csv.reader(handle), start=1)
+            if any(cell.strip() for cell in row) and not row[0].lstrip().startswith("#")
+        ]
+    if len(rows) < 3:
+        raise ValueError(f"{name} needs a header and at least two rows, found {len(rows)} lines")
+    header = {}
+    for index, cell in enumerate(rows[0][1]):
+        label, _, unit = cell.strip().partition("[")
+        header[label.strip()] = (index, unit.rstrip("]").strip())
+    data = {}
+    for label, target in columns.items():
+        if label not in header:
+            raise ValueError(f"{name} has no column '{label} [unit]'")
+        index, unit = header[label]
+        if not unit:
+            raise ValueError(f"{name}: column '{label}' has no unit; write '{label} [{target}]'")
+        try:
+            factor = to_internal(f"1 {unit}", target)
+        except UnitError as err:
+            raise ValueError(f"{name}: column '{label}': {err}") from None
+        values = []
+        for line, row in rows[1:]:
+            try:
+                values.append(float(row[index]))
+            except (ValueError, IndexError):
+                cell = row[index] if index < len(row) else ""
+                raise ValueError(
+                    f"{name}: line {line}, column '{label}': {cell!r} is not a number"
+                ) from None
+        data[label] = np.array(values) * factor
+    return data
+
+
+def check_time_axis(times: np.ndarray, *values: np.ndarray) -> None:
+    """Refuse non-finite samples and times that do not increase strictly (ValueError)."""
+    if not all(np.all(np.isfinite(v)) for v in (times, *values)):
+        raise ValueError("a table must hold finite numbers only")
+    steps = np.flatnonzero(np.diff(times) <= 0.0)
+    if steps.size:
+        k = steps[0] + 1
+        raise ValueError(f"times must increase strictly, but sample {k + 1} is at "
+                         f"{times[k]:g} s after {times[k - 1]:g} s")

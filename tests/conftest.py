@@ -1,0 +1,29 @@
+"""Shared test helpers."""
+
+import math
+
+import numpy as np
+import pytest
+
+from exubrush.experiment import ForceSeries
+
+OMEGA = math.pi / 6.0  # rad/s, the orthogonal case's slide: x = 15 mm sin(ω t)
+
+
+def _sine_run(t0=1.2, t_end=25.2, dt=0.01, scale=1.0):
+    """A slide with a flat force level and a bump at every reversal (synthetic)."""
+    t = np.arange(0.0, t_end + dt / 2, dt)
+    tau = np.clip(t - t0, 0.0, None)
+    x = 15.0 * np.sin(OMEGA * tau)
+    v = 15.0 * OMEGA * np.cos(OMEGA * tau) * (t > t0)
+    bump = np.exp(-(v / 2.0) ** 2) * (t > t0)
+    normal = scale * (1.0 + 0.5 * bump)
+    tangential = scale * 0.7 * np.tanh(v)
+    return ForceSeries(t, x, normal, tangential)
+
+
+
+@pytest.fixture
+def sine_run():
+    """Factory of a synthetic sine slide with flat forces and a bump at each reversal."""
+    return _sine_run
