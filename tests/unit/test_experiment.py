@@ -95,7 +95,7 @@ def test_differences_of_a_scaled_measurement_are_exact(sine_run):
         # the bump peaks at v = 0, inside every reversal zone: F_n peak = 1.5 x scale
         assert row["simulated"]["normal_force"] == pytest.approx(1.5, rel=1e-6)
         assert row["ratio"]["normal_force"] == pytest.approx(1 / 1.25)
-    assert result["largest_flat_difference"]["normal_force"] == pytest.approx(0.2)
+    assert result["largest_flat_difference"]["normal_force"] == pytest.approx(1 / 1.25 - 1)
 
 
 def test_sign_flip_and_partial_coverage(sine_run):
