@@ -172,3 +172,62 @@ def compare(results_dir, measured_csv, out, alignment, time_offset, flat_speed, 
                    f"F_n {100 * largest['normal_force']:+.1f} %, "
                    f"F_t {100 * largest['tangential_force']:+.1f} %")
     click.echo(f"written to {directory}/: {', '.join(written)}")
+
+
+def _parse_times(text: str | None) -> list[float] | None:
+    if text is None:
+        return None
+    try:
+        return [float(item) for item in text.split(",") if item.strip()]
+    except ValueError:
+        _fail(f"--times takes simulated times in seconds separated by commas, e.g. "
+              f"'7.2,10.2', not {text!r}")
+
+
+@main.command()
+@click.argument("results_dirs", nargs=-1, required=True, type=click.Path())
+@click.option("--times", help="Simulated times [s] of the PNG frames, comma separated "
+              "[default: 8 instants spread over the run].")
+@click.option("--out", type=click.Path(file_okay=False),
+              help="Where to write the frames [default: first RESULTS_DIR/frames].")
+@click.option("--gif-frames", type=click.IntRange(min=0), default=120, show_default=True,
+              help="Frames of the animated GIF through all stored shapes (0: no GIF).")
+def frames(results_dirs, times, out, gif_frames):
+    """Draw the bristles of one or more runs side by side (PNG frames and a GIF).
+
+    Give a DFM and a PRB run of the same case to compare them frame by frame. To explore a
+    run interactively instead, see 'Looking at the bristles' in the README.
+    """
+    from exubrush.frames import load_shapes, write_animation, write_frames
+    from exubrush.results import ResultsError
+
+    requested = _parse_times(times)
+    try:
+        runs = [load_shapes(directory) for directory in results_dirs]
+    except ResultsError as err:
+        _fail(str(err))
+    start = max(run.time[0] for run in runs)
+    end = min(run.time[-1] for run in runs)
+    if end < start:
+        _fail("the runs share no time span; frames need overlapping shape samples")
+    if requested is None:
+        requested = list(np.linspace(start, end, 8))
+    outside = [t for t in requested if not start <= t <= end]
+    if outside:
+        _fail(f"--times {', '.join(f'{t:g}' for t in outside)} s lie outside the stored "
+              f"shapes ({start:g} to {end:g} s)")
+    directory = Path(out or Path(results_dirs[0]) / "frames")
+    directory.mkdir(parents=True, exist_ok=True)
+    written = write_frames(runs, requested, directory)
+    if gif_frames:
+        stored = runs[0].time[(runs[0].time >= start) & (runs[0].time <= end)]
+        picked = stored[np.unique(np.linspace(0, stored.size - 1, gif_frames).round()
+                                  .astype(int))]
+        from tqdm import tqdm
+
+        with tqdm(total=len(picked), desc="animated GIF", unit="frame") as bar:
+            write_animation(runs, picked, directory / "bristles.gif",
+                            progress=lambda i, n: bar.update(1))
+        written.append("bristles.gif")
+    click.echo(f"written to {directory}/: {len(written)} files ({written[0]} ... "
+               f"{written[-1]})")

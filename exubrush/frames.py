@@ -1,0 +1,164 @@
+"""Bristle frames: centrelines and tip spheres of saved runs, side by side (headless PNG/GIF).
+
+Each run is drawn in two views, seen from the side (slide axis horizontal) and from the
+end (the other horizontal axis), in a frame that moves with the head: the horizontal
+origin is the centre of the bristle roots, the surface is z = 0. A PRB bristle is drawn as
+root, characteristic pivot and tip; a DFM bristle through its N nodes.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+from matplotlib.collections import LineCollection, PatchCollection  # noqa: E402
+from matplotlib.patches import Circle  # noqa: E402
+
+from exubrush.results import ResultsError, atomic_file, read_results  # noqa: E402
+
+VIEW_AXES = {"orthogonal": (1, 0), "parallel": (0, 1)}  # (slide axis, other axis) in x, y, z
+
+
+@dataclass(frozen=True)
+class RunShapes:
+    """Stored bristle shapes of one run, centred on the head.
+
+    Attributes
+    ----------
+    label : str
+        Title of the run's column.
+    time : ndarray (n_t,)
+        Shape sample times [s].
+    lines : ndarray (n_t, n_bristles, n_points, 3)
+        Centreline points [mm], root first, horizontal origin at the roots' centre.
+    tip_radius : ndarray (n_bristles,)
+        Tip sphere radii [mm].
+    direction : str
+        Slide direction (``orthogonal`` or ``parallel``).
+    """
+
+    label: str
+    time: np.ndarray
+    lines: np.ndarray
+    tip_radius: np.ndarray
+    direction: str
+
+
+def load_shapes(directory: str | Path) -> RunShapes:
+    """Read the shapes of a result directory (ResultsError if it has none)."""
+    from exubrush.models.geometry import head_bristles
+    from exubrush.parameters.case import Case
+    from exubrush.parameters.fields import build
+
+    results = read_results(directory)
+    if results.shape_time.size == 0:
+        raise ResultsError(f"{str(directory)!r} has no bristle shapes (shapes.npz)")
+    meta = results.metadata
+    case = build(Case, meta["parameters"])
+    bristles = head_bristles(case.head)
+    nodes = np.array(results.shape_nodes, dtype=float)
+    if meta.get("model") == "prb":
+        gamma = meta["derived"]["prb_gamma"]
+        stub = np.array([(1.0 - gamma) * b.length * b.frame[:, 0] for b in bristles])
+        pivots = nodes[:, :, :1, :] + stub[None, :, None, :]
+        nodes = np.concatenate([nodes[:, :, :1], pivots, nodes[:, :, 1:]], axis=2)
+    centre = nodes[:, :, 0, :].mean(axis=1)
+    centre[:, 2] = 0.0
+    lines = nodes - centre[:, None, None, :]
+    label = f"{meta.get('model', '?').upper()}: {Path(directory).name}"
+    return RunShapes(label, np.asarray(results.shape_time), lines,
+                     np.array([b.tip_radius for b in bristles]), case.motion.direction)
+
+
+def nearest_samples(run: RunShapes, times) -> list[int]:
+    """Index of the stored shape sample nearest to each requested time [s]."""
+    return [int(np.argmin(np.abs(run.time - t))) for t in times]
+
+
+def _limits(runs: list[RunShapes]) -> tuple[float, float, float]:
+    """Half width of the horizontal views and the top of the vertical axis [mm]."""
+    reach = max(float(np.max(np.abs(r.lines[..., :2]))) + float(r.tip_radius.max())
+                for r in runs)
+    top = max(float(np.max(r.lines[..., 2])) for r in runs)
+    return 1.05 * reach, -0.05 * top, 1.05 * top
+
+
+def _draw_view(axis, run: RunShapes, sample: int, horizontal: int, limits) -> None:
+    lines = run.lines[sample]
+    axis.add_collection(LineCollection(lines[:, :, [horizontal, 2]], colors="tab:blue",
+                                       linewidths=1.0, alpha=0.6))
+    tips = [Circle((p[horizontal], p[2]), r) for p, r in zip(lines[:, -1], run.tip_radius,
+                                                            strict=True)]
+    axis.add_collection(PatchCollection(tips, facecolor="tab:orange", edgecolor="0.3",
+                                        linewidth=0.4, alpha=0.7))
+    half, bottom, top = limits
+    axis.axhspan(bottom, 0.0, color="0.85")
+    axis.axhline(0.0, color="0.3", lw=0.8)
+    axis.set_xlim(-half, half)
+    axis.set_ylim(bottom, top)
+    axis.set_aspect("equal")
+
+
+def _figure(runs: list[RunShapes]):
+    fig, axes = plt.subplots(2, len(runs), figsize=(4.5 * len(runs), 5.5), squeeze=False)
+    return fig, axes
+
+
+def _fill(fig, axes, runs, samples, limits) -> None:
+    for column, (run, sample) in enumerate(zip(runs, samples, strict=True)):
+        slide, other = VIEW_AXES[run.direction]
+        for row, (horizontal, view) in enumerate(((slide, "side view"), (other, "end view"))):
+            axis = axes[row][column]
+            axis.clear()
+            _draw_view(axis, run, sample, horizontal, limits)
+            axis.set_xlabel(f"{'xyz'[horizontal]} from the head centre [mm] ({view})")
+            axis.set_ylabel("height above the surface [mm]")
+        axes[0][column].set_title(f"{run.label}\nt = {run.time[sample]:.2f} s", fontsize=9)
+    fig.suptitle("exubrush bristle shapes (simulation)", fontsize=10)
+
+
+def write_frames(runs: list[RunShapes], times, directory: Path) -> list[str]:
+    """One PNG per requested time, runs side by side; return the file names."""
+    limits = _limits(runs)
+    names = []
+    for k, t in enumerate(times):
+        fig, axes = _figure(runs)
+        _fill(fig, axes, runs, [nearest_samples(run, [t])[0] for run in runs], limits)
+        fig.tight_layout()
+        name = f"frame_{k:03d}_t{t:08.3f}.png"
+        with atomic_file(directory / name, "wb") as handle:
+            fig.savefig(handle, format="png", dpi=100)
+        plt.close(fig)
+        names.append(name)
+    return names
+
+
+def write_animation(runs: list[RunShapes], times, target: Path, fps: float = 8.0,
+                    progress=None) -> None:
+    """An animated GIF through ``times`` (nearest stored samples), runs side by side.
+
+    ``progress(i, n)`` is called after each frame, if given.
+    """
+    from matplotlib.animation import FuncAnimation, PillowWriter
+
+    limits = _limits(runs)
+    fig, axes = _figure(runs)
+
+    def update(t):
+        _fill(fig, axes, runs, [nearest_samples(run, [t])[0] for run in runs], limits)
+        return []
+
+    update(times[0])
+    fig.tight_layout()  # after a first drawing, so that titles and labels keep their room
+    animation = FuncAnimation(fig, update, frames=list(times), init_func=lambda: [],
+                              blit=False)
+    temporary = target.with_name(f".{target.name}.partial.gif")
+    animation.save(temporary, writer=PillowWriter(fps=fps), dpi=80,
+                   progress_callback=progress)
+    plt.close(fig)
+    temporary.replace(target)
