@@ -200,6 +200,27 @@ def strokes(time: np.ndarray, velocity: np.ndarray, flat_speed_fraction: float) 
     return found
 
 
+def reversal_zones(time: np.ndarray, velocity: np.ndarray,
+                   flat_speed_fraction: float) -> list[tuple[float, float]]:
+    """Time spans [s] around each slide reversal where the speed is below the flat zone's.
+
+    A zone is a run of samples with |v| < ``flat_speed_fraction`` x the peak speed whose two
+    sides move in opposite directions (a rest at the start or the end is no reversal).
+    """
+    speed = np.abs(velocity)
+    if speed.size == 0 or speed.max() == 0.0:
+        return []
+    slow = speed < flat_speed_fraction * speed.max()
+    edges = np.flatnonzero(np.diff(slow.astype(int)) != 0) + 1
+    zones = []
+    for run in np.split(np.arange(time.size), edges):
+        if not slow[run[0]] or run[0] == 0 or run[-1] == time.size - 1:
+            continue
+        if np.sign(velocity[run[0] - 1]) == -np.sign(velocity[run[-1] + 1]) != 0:
+            zones.append((float(time[run[0]]), float(time[run[-1]])))
+    return zones
+
+
 def _relative(simulated: float, measured: float) -> float:
     return (simulated - measured) / abs(measured) if measured != 0.0 else float("nan")
 

@@ -118,3 +118,19 @@ def test_no_overlap_is_refused(sine_run):
                            simulated.normal_force, simulated.tangential_force)
     with pytest.raises(ValueError, match="does not overlap the simulation"):
         align(simulated, measured, Alignment())
+
+
+def test_reversal_zones_of_a_sine_are_centred_on_the_reversals(sine_run):
+    from exubrush.experiment import reversal_zones
+
+    run = sine_run(dt=0.001)
+    velocity = np.gradient(run.slider_position, run.time)
+    zones = reversal_zones(run.time, velocity, 0.8)
+    # reversals at slide time 3, 9, 15, 21 s (t0 = 1.2 s); |v| < 0.8 peak within
+    # asin(0.8)/ω of each; the start from rest and the end at full speed are no reversal
+    half = math.asin(0.8) / (math.pi / 6.0)
+    assert len(zones) == 4
+    for (start, end), reversal in zip(zones, [4.2, 10.2, 16.2, 22.2], strict=True):
+        # tolerance: zone edges fall on the 1 ms sample grid
+        assert start == pytest.approx(reversal - half, abs=2e-3)
+        assert end == pytest.approx(reversal + half, abs=2e-3)

@@ -1,0 +1,204 @@
+"""Run time against error: solver and model variants of a brushing case against a reference.
+
+    python validation/benchmarks/benchmark.py [--case orthogonal] [--head default|small]
+        [--repeat 3] [--only NAME ...] [--out validation/results/benchmarks]
+
+Each variant is the case (approach plus one slide period) with a few parameters changed. It
+runs ``--repeat`` times; the wall time is the median, the errors come from the first run
+(runs are deterministic). Errors are against a converged reference (DFM, 24 segments,
+0.25 ms step), computed once per case and head and kept with the overrides that made it:
+
+- flat zone: largest relative difference of the per-stroke flat-zone means of F_n and
+  |F_t| (flat zone: slide speed >= 80 % of the stroke's peak);
+- reversal peaks: largest relative difference of the peak F_n around each reversal;
+- tips: largest distance between a tip in the variant and in the reference [mm].
+
+Output in ``--out``: ``benchmark-CASE-HEAD.csv`` and ``.md`` (one row per variant) and
+``pareto-CASE-HEAD.png`` (wall time against flat-zone error). Timings depend on the machine
+and on what else runs: compare variants within one run of the harness.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import json
+import os
+import platform
+import statistics
+import time
+from pathlib import Path
+
+import numpy as np
+
+from exubrush.experiment import (
+    Alignment,
+    ForceSeries,
+    align,
+    compare,
+    reversal_zones,
+    strokes,
+)
+from exubrush.parameters.io import load_case
+from exubrush.results import Results, read_results
+from exubrush.simulation import simulate
+
+FLAT_SPEED = 0.8
+HEADS = {"default": [], "small": ["head.rows=2", "head.columns=2"]}
+REFERENCE = ["model.kind='dfm'", "model.segments=24", "solver.step_size='0.25 ms'"]
+DFM6 = ["model.kind='dfm'", "model.segments=6"]
+VARIANTS = {
+    "PRB": ["model.kind='prb'"],
+    **{f"DFM N={n}": ["model.kind='dfm'", f"model.segments={n}"] for n in (2, 3, 4, 6, 8, 12)},
+    "DFM N=6, step 0.5 ms": [*DFM6, "solver.step_size='0.5 ms'"],
+    "DFM N=6, step 2 ms": [*DFM6, "solver.step_size='2 ms'"],
+    "DFM N=6, step 5 ms": [*DFM6, "solver.step_size='5 ms'"],
+    "DFM N=6, full Newton": [*DFM6, "solver.modified_newton='no'"],
+    "DFM N=6, Newton rtol 1e-6": [*DFM6, "solver.relative_tolerance=1e-6"],
+    "DFM N=6, Python user functions": [*DFM6, "solver.user_functions='python'"],
+    "DFM N=6, mass x100": [*DFM6, "head.material.density='1.1e5 kg/m^3'"],
+    "DFM N=6, one process": DFM6,
+}
+SINGLE_PROCESS = {"DFM N=6, one process"}
+
+
+def _series(results: Results) -> ForceSeries:
+    return ForceSeries(results.time, results.slider_position, results.normal_force,
+                       results.tangential_force)
+
+
+def errors(results: Results, reference: Results) -> dict:
+    """Flat-zone, reversal-peak and tip errors of ``results`` against ``reference``."""
+    ref = _series(reference)
+    aligned = align(_series(results), ref, Alignment())
+    velocity = np.gradient(ref.slider_position, ref.time)
+    flat = compare(aligned, strokes(ref.time, velocity, FLAT_SPEED))["largest_flat_difference"]
+    peaks = []
+    for start, end in reversal_zones(ref.time, velocity, FLAT_SPEED):
+        zone = (aligned.time >= start) & (aligned.time <= end)
+        if zone.any():
+            simulated = aligned.simulated.normal_force[zone].max()
+            exact = aligned.measured.normal_force[zone].max()
+            peaks.append((simulated - exact) / exact)
+    tips = float("nan")
+    if results.shape_time.shape == reference.shape_time.shape:
+        tips = float(np.max(np.linalg.norm(results.shape_nodes[:, :, -1]
+                                           - reference.shape_nodes[:, :, -1], axis=-1)))
+    return {"flat_normal": flat["normal_force"], "flat_tangential": flat["tangential_force"],
+            "reversal_peak": max(peaks, key=abs) if peaks else None, "tip_mm": tips}
+
+
+def _case(name: str, head: str, overrides: list[str]):
+    return load_case(name, [*HEADS[head], "motion.periods=1", *overrides])
+
+
+def reference_results(case_name: str, head: str, out: Path) -> Results:
+    """The converged reference, solved once and kept in ``out`` with how it was made."""
+    directory = out / f"reference-{case_name}-{head}"
+    made = {"case": case_name, "head_overrides": HEADS[head], "overrides": REFERENCE}
+    if (directory / "run.json").is_file() and (directory / "made.json").is_file():
+        if json.loads((directory / "made.json").read_text()) == made:
+            return read_results(directory)
+    print(f"reference {case_name} {head}: {' '.join(REFERENCE)}", flush=True)
+    results = simulate(_case(case_name, head, REFERENCE), progress=True)
+    if results.metadata["status"] != "completed":
+        raise SystemExit(f"the reference did not complete: {results.metadata['message']}")
+    results.save(directory)
+    (directory / "made.json").write_text(json.dumps(made, indent=2))
+    return results
+
+
+def run_variant(case_name: str, head: str, name: str, repeat: int) -> tuple[Results, dict]:
+    """Run a variant ``repeat`` times; return its first results and the timing record."""
+    walls, first = [], None
+    workers = 1 if name in SINGLE_PROCESS else None
+    for _ in range(repeat):
+        start = time.perf_counter()
+        results = simulate(_case(case_name, head, VARIANTS[name]), progress=False,
+                           workers=workers)
+        walls.append(time.perf_counter() - start)
+        first = first or results
+    meta = first.metadata
+    stats = meta["solver_statistics"]
+    return first, {
+        "variant": name, "status": meta["status"],
+        "wall_time_s": statistics.median(walls), "wall_times_s": walls,
+        "simulated_s": meta["simulated_time_s"],
+        "real_time_factor": meta["simulated_time_s"] / statistics.median(walls),
+        "steps": stats.get("steps"), "newton_iterations": stats.get("newton_iterations"),
+        "jacobian_updates": stats.get("jacobian_updates"),
+    }
+
+
+def _pct(value) -> str:
+    return "-" if value is None or np.isnan(value) else f"{100 * value:+.2f} %"
+
+
+def write_outputs(rows: list[dict], out: Path, stem: str, machine: str) -> None:
+    """Table (CSV and Markdown) and the Pareto plot of wall time against flat-zone error."""
+    columns = ["variant", "status", "wall_time_s", "real_time_factor", "steps",
+               "newton_iterations", "jacobian_updates", "flat_normal", "flat_tangential",
+               "reversal_peak", "tip_mm", "wall_times_s"]
+    with (out / f"{stem}.csv").open("w", newline="") as handle:
+        writer = csv.DictWriter(handle, fieldnames=columns, extrasaction="ignore")
+        writer.writeheader()
+        writer.writerows(rows)
+    lines = [f"Machine: {machine}", "",
+             "| variant | wall time [s] | real-time factor | steps | Newton its | Jacobians "
+             "| flat F_n | flat F_t | reversal peak F_n | tip [mm] |",
+             "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
+    for r in rows:
+        lines.append(f"| {r['variant']} | {r['wall_time_s']:.1f} | {r['real_time_factor']:.2f} "
+                     f"| {r['steps']} | {r['newton_iterations']} | {r['jacobian_updates']} "
+                     f"| {_pct(r['flat_normal'])} | {_pct(r['flat_tangential'])} "
+                     f"| {_pct(r['reversal_peak'])} | {r['tip_mm']:.3f} |")
+    (out / f"{stem}.md").write_text("\n".join(lines) + "\n")
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axis = plt.subplots(figsize=(8, 5))
+    for r in rows:
+        if r["flat_normal"] is None:
+            continue
+        error = max(abs(r["flat_normal"]), 1e-5)
+        axis.loglog(r["wall_time_s"], 100 * error, "o")
+        axis.annotate(r["variant"], (r["wall_time_s"], 100 * error), fontsize=7,
+                      xytext=(3, 3), textcoords="offset points")
+    axis.set_xlabel("wall time [s] (median)")
+    axis.set_ylabel("flat-zone F_n error against the reference [%]")
+    axis.set_title(f"exubrush run time against error: {stem}", fontsize=10)
+    axis.grid(True, which="both", alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(out / f"pareto-{stem.removeprefix('benchmark-')}.png", dpi=110)
+    plt.close(fig)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--case", default="orthogonal", choices=["orthogonal", "parallel"])
+    parser.add_argument("--head", default="default", choices=sorted(HEADS))
+    parser.add_argument("--repeat", type=int, default=3)
+    parser.add_argument("--only", nargs="*", choices=sorted(VARIANTS), metavar="VARIANT")
+    parser.add_argument("--out", type=Path,
+                        default=Path(__file__).parent.parent / "results" / "benchmarks")
+    args = parser.parse_args()
+    args.out.mkdir(parents=True, exist_ok=True)
+    machine = f"{platform.node()}, {os.cpu_count()} cores, Python {platform.python_version()}"
+    reference = reference_results(args.case, args.head, args.out)
+    rows = []
+    for name in args.only or VARIANTS:
+        print(f"{name} ...", end=" ", flush=True)
+        results, record = run_variant(args.case, args.head, name, args.repeat)
+        record.update(errors(results, reference))
+        rows.append(record)
+        print(f"{record['wall_time_s']:.1f} s, flat F_n {_pct(record['flat_normal'])}",
+              flush=True)
+    write_outputs(rows, args.out, f"benchmark-{args.case}-{args.head}", machine)
+    print(f"written {args.out}/benchmark-{args.case}-{args.head}.md")
+
+
+if __name__ == "__main__":
+    main()
