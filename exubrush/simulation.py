@@ -15,11 +15,13 @@ system, which the same forces must come out of (tests/integration/test_partition
 
 from __future__ import annotations
 
+import contextlib
 import multiprocessing
 import os
 import platform
 import queue
 import signal
+import threading
 import time
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 
@@ -178,6 +180,27 @@ def _drain(updates, bar, share: float) -> None:
             return
 
 
+@contextlib.contextmanager
+def _signals_set(stop: threading.Event):
+    """While solving in this process, Ctrl-C and SIGTERM set ``stop`` instead of raising.
+
+    An exception raised inside Exudyn's solve (from a user function or a callback) would
+    surface as a solver failure or a traceback; the solve checks ``stop`` at its next report
+    and returns what it has. Outside the main thread, signals cannot be caught: no change.
+    """
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = {number: signal.getsignal(number) for number in (signal.SIGINT, signal.SIGTERM)}
+    for number in previous:
+        signal.signal(number, lambda *_: stop.set())
+    try:
+        yield
+    finally:
+        for number, handler in previous.items():
+            signal.signal(number, handler)
+
+
 def _run_groups(case: Case, groups, workers: int, progress: bool, total: float,
                 directory: RunDirectory | None) -> tuple[list[dict | None], bool]:
     """Solve ``groups`` (skipping those ``directory`` holds); store each as it finishes.
@@ -201,15 +224,15 @@ def _run_groups(case: Case, groups, workers: int, progress: bool, total: float,
 
     interrupted = False
     if workers <= 1 or len(todo) <= 1:
-        local = queue.SimpleQueue()
-        try:
+        local, stop = queue.SimpleQueue(), threading.Event()
+        with _signals_set(stop):
             for index in todo:
-                finished(index, solve_group(case, groups[index], local))
+                if stop.is_set():
+                    break
+                finished(index, solve_group(case, groups[index], local, stop=stop))
                 _drain(local, bar, share)
-        except KeyboardInterrupt:
-            interrupted = True
         bar.close()
-        return outputs, interrupted
+        return outputs, stop.is_set()
     context = multiprocessing.get_context("spawn")
     updates, stop = context.Queue(), context.Event()
     with ProcessPoolExecutor(min(workers, len(todo)), mp_context=context,

@@ -134,3 +134,22 @@ def test_a_failed_solve_keeps_its_partial_results_with_the_reason(tmp_path):
     assert forces[-1, 0] == pytest.approx(meta["simulated_time_s"])
     assert 0.0 < forces[-1, 0] < meta["derived"]["end_time_s"]
     assert np.all(np.isfinite(forces[:, [0, 1, 3, 4]]))
+
+
+@pytest.mark.parametrize("signal_number", [signal.SIGINT, signal.SIGTERM])
+def test_a_single_process_run_stops_cleanly_on_ctrl_c_or_kill(tmp_path, signal_number):
+    out = tmp_path / "run"
+    # one bristle: solved in the main process, where the signal lands inside Exudyn's solve
+    process = subprocess.Popen(
+        [sys.executable, "-m", "exubrush", "run", "orthogonal", "--segments", "2", "--quiet",
+         "--set", "head.rows=1", "--set", "head.columns=1", "--out", str(out)],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
+    time.sleep(6.0)  # past start-up and into the solve (a full run takes ~10 s)
+    assert process.poll() is None, "the run ended before the signal"
+    process.send_signal(signal_number)
+    _, stderr = process.communicate(timeout=120)
+    assert process.returncode == 130, stderr
+    assert "Traceback" not in stderr
+    meta = json.loads((out / "run.json").read_text())
+    assert meta["status"] == "interrupted", meta["message"]
+    assert 0.0 < meta["simulated_time_s"] < meta["derived"]["end_time_s"]
