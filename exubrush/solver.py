@@ -23,7 +23,9 @@ def dynamic_settings(solver: Solver, end_time: float, output_interval: float):
 
     Choices (EXUDYN_NOTES.md, verified in this project): spectral radius 0 by default,
     modified Newton, automatic step reduction down to ``minimum_step_size`` (snap-through
-    at stroke reversals needs tiny steps), ``adaptInitialResidual`` off (with it on, a
+    at stroke reversals needs tiny steps) with a quick recovery (``step_recovery_steps``:
+    the step may double again after 2 good steps instead of Exudyn's 10, which kept the
+    step tiny through stick-slip chatter), ``adaptInitialResidual`` off (with it on, a
     diverged first iteration resets the reference residual and a wrong step can pass), and
     no solution-norm bound (a small one caused false failures at snap-through).
     """
@@ -34,6 +36,7 @@ def dynamic_settings(solver: Solver, end_time: float, output_interval: float):
     ti.minimumStepSize = solver.minimum_step_size
     ti.automaticStepSize = True
     ti.adaptiveStep = True
+    ti.adaptiveStepRecoverySteps = solver.step_recovery_steps
     ti.generalizedAlpha.spectralRadius = solver.spectral_radius
     ti.generalizedAlpha.computeInitialAccelerations = True
     ti.newton.useModifiedNewton = solver.modified_newton == "yes"

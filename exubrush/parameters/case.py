@@ -176,6 +176,11 @@ class Solver:
     absolute_tolerance: float = param(1e-10, "Newton absolute tolerance (residual)", above=0.0)
     modified_newton: str = param("yes", "reuse the Jacobian between steps", "text",
                                  choices=("yes", "no"))
+    step_recovery_steps: int = param(
+        2, "successful steps after a step reduction before the step may grow again "
+        "(Exudyn's adaptiveStepRecoverySteps; its default 10 made PRB stick-slip 4-8x slower)",
+        minimum=1,
+    )
     partition: str = param(
         "per-bristle",
         "per-bristle: each bristle its own system, in parallel processes (bristles do not "
