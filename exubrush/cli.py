@@ -135,7 +135,14 @@ def compare(results_dir, measured_csv, out, alignment, time_offset, flat_speed, 
     Writes comparison.md, comparison.json and compare_*.png.
     """
     from exubrush.compare_report import write_comparison
-    from exubrush.experiment import Alignment, ForceSeries, align, read_measured_csv, strokes
+    from exubrush.experiment import (
+        Alignment,
+        ForceSeries,
+        align,
+        declares_model_output,
+        read_measured_csv,
+        strokes,
+    )
     from exubrush.experiment import compare as compare_series
     from exubrush.results import ResultsError, read_results
 
@@ -156,7 +163,8 @@ def compare(results_dir, measured_csv, out, alignment, time_offset, flat_speed, 
     sources = {"simulation": str(results_dir), "measurement": str(measured_csv),
                "model": results.metadata.get("model", "?"),
                "alignment": ("fitted to the slider positions" if settings.by_position
-                             else "given")}
+                             else "given"),
+               "model_output": declares_model_output(measured_csv)}
     if results.metadata.get("status", "completed") != "completed":
         click.echo(f"exubrush: warning: the run in {results_dir} is "
                    f"{results.metadata.get('status')}; only its saved part is compared",

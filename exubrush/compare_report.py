@@ -22,7 +22,9 @@ def summary_markdown(comparison: dict, sources: dict, flat_speed_fraction: float
         "",
         f"- simulation: `{sources['simulation']}` ({sources['model']} model; "
         "exubrush model output)",
-        f"- measurement: `{sources['measurement']}`",
+        f"- measurement: `{sources['measurement']}`"
+        + (" **(its header declares it model output, not a measurement: this compares two "
+           "models)**" if sources.get("model_output") else ""),
         f"- alignment: measured time + {time_offset:.6g} s = simulation time "
         f"({sources['alignment']})",
         f"- flat zone: slide speed >= {flat_speed_fraction:g} x the stroke's peak speed",
@@ -90,5 +92,8 @@ def write_comparison(aligned: Aligned, comparison: dict, directory: Path, source
         handle.write(summary_markdown(comparison, sources, flat_speed_fraction,
                                       aligned.time_offset))
     title = f"{sources['model']} simulation vs {Path(sources['measurement']).name}"
-    plots = plot_comparison(aligned, comparison, title, directory)
+    if sources.get("model_output"):
+        title += " (model output, not measured)"
+    label = "file (model output)" if sources.get("model_output") else "measured"
+    plots = plot_comparison(aligned, comparison, title, directory, label)
     return ["comparison.json", "comparison.md", *plots]

@@ -45,6 +45,17 @@ class ForceSeries:
     tangential_force: np.ndarray
 
 
+def declares_model_output(path) -> bool:
+    """Whether the file's ``#`` header says it is not measured (e.g. exubrush's demo file)."""
+    with open(path, encoding="utf-8", errors="replace") as handle:
+        for line in handle:
+            if not line.lstrip().startswith("#"):
+                return False
+            if "not measured" in line.lower() or "model output" in line.lower():
+                return True
+    return False
+
+
 def read_measured_csv(path) -> ForceSeries:
     """Read a measured CSV (:data:`MEASURED_COLUMNS`); ValueError names what is wrong."""
     data = read_unit_table(path, MEASURED_COLUMNS, "measured CSV")

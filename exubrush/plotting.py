@@ -32,9 +32,9 @@ def plot_forces(results, target) -> None:
     plt.close(fig)
 
 
-def _series_axes(axes, x, aligned, xlabel):
+def _series_axes(axes, x, aligned, xlabel, reference_label="measured"):
     """F_n, F_t and |F_t|/F_n of simulation and measurement against ``x`` on three axes."""
-    for series, label, style in ((aligned.measured, "measured", dict(color="0.3", lw=0.8)),
+    for series, label, style in ((aligned.measured, reference_label, dict(color="0.3", lw=0.8)),
                                  (aligned.simulated, "simulation", dict(color="tab:blue",
                                                                         lw=1.0))):
         normal = series.normal_force
@@ -52,10 +52,12 @@ def _series_axes(axes, x, aligned, xlabel):
         axis.grid(True, alpha=0.3)
 
 
-def plot_comparison(aligned, comparison, title, directory) -> list[str]:
+def plot_comparison(aligned, comparison, title, directory,
+                    reference_label="measured") -> list[str]:
     """Write the whole-run, flat-zone and one-period comparison plots; return file names.
 
-    Flat zone: the last stroke with a complete flat zone (shaded). One period: the last two
+    ``reference_label`` names the file's curve in the legends. Flat zone: the last stroke
+    with a complete flat zone (shaded). One period: the last two
     consecutive strokes that the measurement covers, reversal to reversal, forces against
     slider position.
     """
@@ -63,12 +65,13 @@ def plot_comparison(aligned, comparison, title, directory) -> list[str]:
     rows = comparison["strokes"]
     distance = np.concatenate([[0.0], np.cumsum(np.abs(np.diff(aligned.slider_position)))])
     fig, axes = plt.subplots(3, 1, figsize=(9, 8), sharex=True)
-    _series_axes(axes, distance, aligned, "travelled distance [mm] (simulated slider)")
+    _series_axes(axes, distance, aligned, "travelled distance [mm] (simulated slider)",
+                 reference_label)
     for row in rows:
         mask = (aligned.time >= row["flat_start"]) & (aligned.time <= row["flat_end"])
         for axis in axes:
             axis.axvspan(distance[mask][0], distance[mask][-1], color="tab:green", alpha=0.08)
-    fig.suptitle(f"{title}: whole run (flat zones shaded)")
+    fig.suptitle(f"{title}\nwhole run (flat zones shaded)", fontsize=10)
     names.append(_save(fig, directory, "compare_run.png"))
     if rows:
         last = rows[-1]
@@ -76,18 +79,19 @@ def plot_comparison(aligned, comparison, title, directory) -> list[str]:
         mask = ((aligned.time >= last["flat_start"] - margin)
                 & (aligned.time <= last["flat_end"] + margin))
         fig, axes = plt.subplots(3, 1, figsize=(9, 8), sharex=True)
-        _series_axes(axes, aligned.time[mask], _masked(aligned, mask), "time [s]")
+        _series_axes(axes, aligned.time[mask], _masked(aligned, mask), "time [s]", reference_label)
         for axis in axes:
             axis.axvspan(last["flat_start"], last["flat_end"], color="tab:green", alpha=0.08)
-        fig.suptitle(f"{title}: flat zone of stroke {last['index']}")
+        fig.suptitle(f"{title}\nflat zone of stroke {last['index']}", fontsize=10)
         names.append(_save(fig, directory, "compare_flat.png"))
     if len(rows) >= 2 and rows[-1]["index"] == rows[-2]["index"] + 1:
         first, last = rows[-2], rows[-1]
         mask = ((aligned.time >= first["start"]) & (aligned.time <= last["end"]))
         fig, axes = plt.subplots(3, 1, figsize=(9, 8), sharex=True)
         _series_axes(axes, aligned.slider_position[mask], _masked(aligned, mask),
-                     "slider position [mm] (simulated slider)")
-        fig.suptitle(f"{title}: one period (strokes {first['index']} and {last['index']})")
+                     "slider position [mm] (simulated slider)", reference_label)
+        fig.suptitle(f"{title}\none period (strokes {first['index']} and {last['index']})",
+                     fontsize=10)
         names.append(_save(fig, directory, "compare_period.png"))
     return names
 

@@ -69,3 +69,13 @@ def test_compare_refuses_a_measured_file_without_units(tmp_path, sine_run):
     done = _exubrush("compare", str(tmp_path / "run"), str(tmp_path / "rig.csv"))
     assert done.returncode == 2
     assert "column 'time' has no unit" in done.stderr and "Traceback" not in done.stderr
+
+
+def test_a_file_declaring_model_output_is_never_called_a_measurement(tmp_path, sine_run):
+    _save_run(tmp_path / "run", sine_run())
+    path = tmp_path / "demo.csv"
+    _write_measured(path, sine_run(), shift=0.0)
+    path.write_text("# NOT MEASURED DATA: model output\n" + path.read_text())
+    done = _exubrush("compare", str(tmp_path / "run"), str(path), "--out", str(tmp_path / "c"))
+    assert done.returncode == 0, done.stderr
+    assert "declares it model output" in (tmp_path / "c" / "comparison.md").read_text()
