@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import signal
 import sys
 from pathlib import Path
@@ -67,7 +68,8 @@ def run(case, model, segments, periods, out, overrides, overwrite, quiet):
     # a kill (SIGTERM) stops the run like Ctrl-C: what is finished is kept and saved
     signal.signal(signal.SIGTERM, signal.default_int_handler)
     results = simulate(parameters, progress=not quiet, directory=store)
-    results.save(directory)
+    with _signals_ignored():  # a second of writing: finish it rather than leave it half done
+        results.save(directory)
     meta = results.metadata
     sanity = meta["sanity"]
     if not sanity["within_bound"]:
@@ -86,6 +88,18 @@ def run(case, model, segments, periods, out, overrides, overwrite, quiet):
     click.echo(f"exubrush: {meta['status']}: {meta['message']}; {saved} (run.json: status "
                f"{meta['status']!r})", err=True)
     sys.exit(130 if meta["status"] == "interrupted" else 1)
+
+
+@contextlib.contextmanager
+def _signals_ignored():
+    """Ignore Ctrl-C and SIGTERM inside the block; restore the handlers after it."""
+    previous = {number: signal.signal(number, signal.SIG_IGN)
+                for number in (signal.SIGINT, signal.SIGTERM)}
+    try:
+        yield
+    finally:
+        for number, handler in previous.items():
+            signal.signal(number, handler)
 
 
 def _warn_unreachable(parameters) -> None:
