@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import contextlib
 import signal
 import sys
 from pathlib import Path
@@ -55,7 +54,7 @@ def run(case, model, segments, periods, out, overrides, overwrite, quiet):
         _fail(str(err))
     _warn_unreachable(parameters)
     from exubrush.rundir import RunDirectory, RunDirectoryError
-    from exubrush.simulation import simulate
+    from exubrush.simulation import signals_redirected, simulate
 
     directory = Path(out or f"results/{parameters.name}-{parameters.model.kind}")
     try:
@@ -68,7 +67,7 @@ def run(case, model, segments, periods, out, overrides, overwrite, quiet):
     # a kill (SIGTERM) stops the run like Ctrl-C: what is finished is kept and saved
     signal.signal(signal.SIGTERM, signal.default_int_handler)
     results = simulate(parameters, progress=not quiet, directory=store)
-    with _signals_ignored():  # a second of writing: finish it rather than leave it half done
+    with signals_redirected(signal.SIG_IGN):  # a second of writing: finish, never half done
         results.save(directory)
     meta = results.metadata
     sanity = meta["sanity"]
@@ -88,18 +87,6 @@ def run(case, model, segments, periods, out, overrides, overwrite, quiet):
     click.echo(f"exubrush: {meta['status']}: {meta['message']}; {saved} (run.json: status "
                f"{meta['status']!r})", err=True)
     sys.exit(130 if meta["status"] == "interrupted" else 1)
-
-
-@contextlib.contextmanager
-def _signals_ignored():
-    """Ignore Ctrl-C and SIGTERM inside the block; restore the handlers after it."""
-    previous = {number: signal.signal(number, signal.SIG_IGN)
-                for number in (signal.SIGINT, signal.SIGTERM)}
-    try:
-        yield
-    finally:
-        for number, handler in previous.items():
-            signal.signal(number, handler)
 
 
 def _warn_unreachable(parameters) -> None:

@@ -102,7 +102,6 @@ class Aligned:
     time: np.ndarray
     time_offset: float
     slider_position: np.ndarray
-    slide_velocity: np.ndarray
     simulated: ForceSeries
     measured: ForceSeries
 
@@ -149,7 +148,6 @@ def align(simulated: ForceSeries, measured: ForceSeries, alignment: Alignment) -
             f"not overlap the simulation ({simulated.time[0]:g} to {simulated.time[-1]:g} s); "
             "set the time offset or align by slider position")
     t = t[inside]
-    velocity = np.gradient(simulated.slider_position, simulated.time)
 
     def on_grid(values):
         return np.interp(t, simulated.time, values)
@@ -163,8 +161,8 @@ def align(simulated: ForceSeries, measured: ForceSeries, alignment: Alignment) -
     simulated_on_grid = ForceSeries(t, on_grid(simulated.slider_position),
                                     on_grid(simulated.normal_force),
                                     on_grid(simulated.tangential_force))
-    return Aligned(t, offset, simulated_on_grid.slider_position, on_grid(velocity),
-                   simulated_on_grid, measured_inside)
+    return Aligned(t, offset, simulated_on_grid.slider_position, simulated_on_grid,
+                   measured_inside)
 
 
 @dataclass(frozen=True)

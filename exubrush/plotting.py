@@ -105,7 +105,6 @@ def _masked(aligned, mask):
                                    "tangential_force")})
 
     return replace(aligned, time=aligned.time[mask], slider_position=aligned.slider_position[mask],
-                   slide_velocity=aligned.slide_velocity[mask],
                    simulated=cut(aligned.simulated), measured=cut(aligned.measured))
 
 

@@ -181,24 +181,23 @@ def _drain(updates, bar, share: float) -> None:
 
 
 @contextlib.contextmanager
-def _signals_set(stop: threading.Event):
-    """While solving in this process, Ctrl-C and SIGTERM set ``stop`` instead of raising.
+def signals_redirected(handler):
+    """Handle Ctrl-C and SIGTERM with ``handler`` inside the block (restored after it).
 
-    An exception raised inside Exudyn's solve (from a user function or a callback) would
-    surface as a solver failure or a traceback; the solve checks ``stop`` at its next report
-    and returns what it has. Outside the main thread, signals cannot be caught: no change.
+    Used to let a solve in this process stop at its next report instead of raising inside
+    Exudyn (an exception there surfaces as a solver failure or a traceback), and to finish
+    writing results. Outside the main thread signals cannot be handled: no change.
     """
     if threading.current_thread() is not threading.main_thread():
         yield
         return
-    previous = {number: signal.getsignal(number) for number in (signal.SIGINT, signal.SIGTERM)}
-    for number in previous:
-        signal.signal(number, lambda *_: stop.set())
+    previous = {number: signal.signal(number, handler)
+                for number in (signal.SIGINT, signal.SIGTERM)}
     try:
         yield
     finally:
-        for number, handler in previous.items():
-            signal.signal(number, handler)
+        for number, old in previous.items():
+            signal.signal(number, old)
 
 
 def _run_groups(case: Case, groups, workers: int, progress: bool, total: float,
@@ -225,7 +224,7 @@ def _run_groups(case: Case, groups, workers: int, progress: bool, total: float,
     interrupted = False
     if workers <= 1 or len(todo) <= 1:
         local, stop = queue.SimpleQueue(), threading.Event()
-        with _signals_set(stop):
+        with signals_redirected(lambda *_: stop.set()):
             for index in todo:
                 if stop.is_set():
                     break
