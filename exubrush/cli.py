@@ -150,13 +150,11 @@ def compare(results_dir, measured_csv, out, alignment, time_offset, flat_speed, 
     try:
         results = read_results(results_dir)
         measured = read_measured_csv(measured_csv)
-        simulated = ForceSeries(results.time, results.slider_position, results.normal_force,
-                                results.tangential_force)
+        simulated = ForceSeries.from_results(results)
         settings = Alignment(time_offset=time_offset, by_position=alignment == "position",
                              signs=tuple((channel, -1.0) for channel in invert))
         aligned = align(simulated, measured, settings)
-        velocity = np.gradient(simulated.slider_position, simulated.time)
-        found = strokes(simulated.time, velocity, flat_speed)
+        found = strokes(simulated.time, simulated.slide_velocity, flat_speed)
     except (ResultsError, ValueError) as err:
         _fail(str(err))
     comparison = compare_series(aligned, found)

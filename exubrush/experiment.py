@@ -44,6 +44,17 @@ class ForceSeries:
     normal_force: np.ndarray
     tangential_force: np.ndarray
 
+    @classmethod
+    def from_results(cls, results) -> ForceSeries:
+        """The forces of a simulation (:class:`exubrush.results.Results`)."""
+        return cls(results.time, results.slider_position, results.normal_force,
+                   results.tangential_force)
+
+    @property
+    def slide_velocity(self) -> np.ndarray:
+        """Slider velocity [mm/s] by finite differences."""
+        return np.gradient(self.slider_position, self.time)
+
 
 def declares_model_output(path) -> bool:
     """Whether the file's ``#`` header says it is not measured (e.g. exubrush's demo file)."""
@@ -99,11 +110,19 @@ class Alignment:
 class Aligned:
     """Simulation and measurement on the measured samples inside the simulated span."""
 
-    time: np.ndarray
     time_offset: float
-    slider_position: np.ndarray
     simulated: ForceSeries
     measured: ForceSeries
+
+    @property
+    def time(self) -> np.ndarray:
+        """Common sample times [s] (simulation time)."""
+        return self.simulated.time
+
+    @property
+    def slider_position(self) -> np.ndarray:
+        """Simulated slider position on the common samples [mm]."""
+        return self.simulated.slider_position
 
 
 def _position_misfit(offset: float, simulated: ForceSeries, measured: ForceSeries,
@@ -161,8 +180,7 @@ def align(simulated: ForceSeries, measured: ForceSeries, alignment: Alignment) -
     simulated_on_grid = ForceSeries(t, on_grid(simulated.slider_position),
                                     on_grid(simulated.normal_force),
                                     on_grid(simulated.tangential_force))
-    return Aligned(t, offset, simulated_on_grid.slider_position, simulated_on_grid,
-                   measured_inside)
+    return Aligned(offset, simulated_on_grid, measured_inside)
 
 
 @dataclass(frozen=True)

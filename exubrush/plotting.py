@@ -6,7 +6,8 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+
+from exubrush.results import atomic_file, friction_coefficient, travelled_distance  # noqa: E402
 
 
 def plot_forces(results, target) -> None:
@@ -37,10 +38,8 @@ def _series_axes(axes, x, aligned, xlabel, reference_label="measured"):
     for series, label, style in ((aligned.measured, reference_label, dict(color="0.3", lw=0.8)),
                                  (aligned.simulated, "simulation", dict(color="tab:blue",
                                                                         lw=1.0))):
-        normal = series.normal_force
-        with np.errstate(divide="ignore", invalid="ignore"):
-            ratio = np.where(normal > 1e-6, np.abs(series.tangential_force) / normal, np.nan)
-        axes[0].plot(x, normal, label=label, **style)
+        ratio = friction_coefficient(series.normal_force, series.tangential_force)
+        axes[0].plot(x, series.normal_force, label=label, **style)
         axes[1].plot(x, series.tangential_force, **style)
         axes[2].plot(x, ratio, **style)
     axes[0].set_ylabel("normal force [N]")
@@ -63,7 +62,7 @@ def plot_comparison(aligned, comparison, title, directory,
     """
     names = []
     rows = comparison["strokes"]
-    distance = np.concatenate([[0.0], np.cumsum(np.abs(np.diff(aligned.slider_position)))])
+    distance = travelled_distance(aligned.slider_position)
     fig, axes = plt.subplots(3, 1, figsize=(9, 8), sharex=True)
     _series_axes(axes, distance, aligned, "travelled distance [mm] (simulated slider)",
                  reference_label)
@@ -104,13 +103,10 @@ def _masked(aligned, mask):
                                   ("time", "slider_position", "normal_force",
                                    "tangential_force")})
 
-    return replace(aligned, time=aligned.time[mask], slider_position=aligned.slider_position[mask],
-                   simulated=cut(aligned.simulated), measured=cut(aligned.measured))
+    return replace(aligned, simulated=cut(aligned.simulated), measured=cut(aligned.measured))
 
 
 def _save(fig, directory, name) -> str:
-    from exubrush.results import atomic_file
-
     fig.tight_layout()
     with atomic_file(directory / name, "wb") as handle:
         fig.savefig(handle, format="png", dpi=110)

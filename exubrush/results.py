@@ -31,6 +31,19 @@ CSV_COLUMNS = (
 )
 
 
+def travelled_distance(slider_position: np.ndarray) -> np.ndarray:
+    """Cumulative slide path Σ|Δs| [mm] of a slider position series [mm]."""
+    return np.concatenate([[0.0], np.cumsum(np.abs(np.diff(slider_position)))])
+
+
+def friction_coefficient(normal_force: np.ndarray, tangential_force: np.ndarray) -> np.ndarray:
+    """|F_t| / F_n [-], NaN where F_n is below :data:`NO_CONTACT_FORCE` (undefined)."""
+    ratio = np.full_like(normal_force, np.nan, dtype=float)
+    touching = normal_force > NO_CONTACT_FORCE
+    ratio[touching] = np.abs(tangential_force[touching]) / normal_force[touching]
+    return ratio
+
+
 @dataclass
 class Results:
     """Time series of one run (units in :data:`CSV_COLUMNS`) plus metadata.
@@ -52,15 +65,12 @@ class Results:
     @property
     def travelled_distance(self) -> np.ndarray:
         """Cumulative slide path Σ|Δs| [mm]."""
-        return np.concatenate([[0.0], np.cumsum(np.abs(np.diff(self.slider_position)))])
+        return travelled_distance(self.slider_position)
 
     @property
     def friction_coefficient(self) -> np.ndarray:
         """|F_t| / F_n [-], NaN where F_n < 1 µN (undefined; written as an empty cell)."""
-        ratio = np.full_like(self.normal_force, np.nan)
-        touching = self.normal_force > NO_CONTACT_FORCE
-        ratio[touching] = np.abs(self.tangential_force[touching]) / self.normal_force[touching]
-        return ratio
+        return friction_coefficient(self.normal_force, self.tangential_force)
 
     def columns(self) -> dict[str, np.ndarray]:
         """All CSV columns by their header (name [unit])."""

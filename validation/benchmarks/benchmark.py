@@ -62,16 +62,11 @@ VARIANTS = {
 SINGLE_PROCESS = {"DFM N=6, one process"}
 
 
-def _series(results: Results) -> ForceSeries:
-    return ForceSeries(results.time, results.slider_position, results.normal_force,
-                       results.tangential_force)
-
-
 def errors(results: Results, reference: Results) -> dict:
     """Flat-zone, reversal-peak and tip errors of ``results`` against ``reference``."""
-    ref = _series(reference)
-    aligned = align(_series(results), ref, Alignment())
-    velocity = np.gradient(ref.slider_position, ref.time)
+    ref = ForceSeries.from_results(reference)
+    aligned = align(ForceSeries.from_results(results), ref, Alignment())
+    velocity = ref.slide_velocity
     flat = compare(aligned, strokes(ref.time, velocity, FLAT_SPEED))["largest_flat_difference"]
     peaks = []
     for start, end in reversal_zones(ref.time, velocity, FLAT_SPEED):
