@@ -1,4 +1,4 @@
-"""Command line: ``exubrush run``, ``case``, ``compare`` and ``frames``."""
+"""Command line: ``exubrush run``, ``case``, ``compare``, ``frames`` and ``view``."""
 
 from __future__ import annotations
 
@@ -39,7 +39,9 @@ def main() -> None:
 @click.option("--overwrite", is_flag=True,
               help="Replace exubrush results already in --out (other files are never touched).")
 @click.option("--quiet", is_flag=True, help="No progress bar.")
-def run(case, model, segments, periods, out, overrides, overwrite, quiet):
+@click.option("--viewer", is_flag=True, help="Also keep every node's coordinates at the "
+              "shape interval, to open the run with 'exubrush view' (output.solution_file).")
+def run(case, model, segments, periods, out, overrides, overwrite, quiet, viewer):
     """Simulate CASE (orthogonal, parallel or a TOML case file) and save the results.
 
     Finished bristles are kept in OUT/.checkpoint while the run goes on: after Ctrl-C, a
@@ -47,7 +49,8 @@ def run(case, model, segments, periods, out, overrides, overwrite, quiet):
     """
     shortcuts = [f"model.kind={model!r}" if model else None,
                  f"model.segments={segments}" if segments is not None else None,
-                 f"motion.periods={periods}" if periods is not None else None]
+                 f"motion.periods={periods}" if periods is not None else None,
+                 "output.solution_file='yes'" if viewer else None]
     try:
         parameters = load_case(case, [*filter(None, shortcuts), *overrides])
     except (ParameterError, UnitError) as err:
@@ -238,3 +241,32 @@ def frames(results_dirs, times, out, gif_frames):
         written.append("bristles.gif")
     click.echo(f"written to {directory}/: {len(written)} files ({written[0]} ... "
                f"{written[-1]})")
+
+
+@main.command()
+@click.argument("results_dir", type=click.Path())
+@click.option("--write-only", is_flag=True,
+              help="Write the solution file and do not open a window.")
+def view(results_dir, write_only):
+    """Open a run of 'exubrush run --viewer' in Exudyn's SolutionViewer.
+
+    Writes RESULTS_DIR/exudyn-solution.txt (every node's coordinates at the shape
+    interval, the whole head as one Exudyn system) and, where a display is available,
+    opens Exudyn's renderer with the SolutionViewer dialog on it.
+    """
+    from exubrush.results import ResultsError
+    from exubrush.viewer import has_display, open_viewer, prepare, viewer_scene
+
+    try:
+        results, path = prepare(results_dir)
+        scene = viewer_scene(results)  # refuses coordinates that do not fit the head
+    except ResultsError as err:
+        _fail(str(err))
+    click.echo(f"written {path} ({len(results.shape_coordinates)} rows)")
+    if write_only:
+        return
+    if not has_display():
+        click.echo("no display here: on a desktop, run 'exubrush view "
+                   f"{results_dir}' to open it in Exudyn's SolutionViewer", err=True)
+        return
+    open_viewer(scene, path)

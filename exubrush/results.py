@@ -50,7 +50,10 @@ class Results:
 
     ``shapes`` holds the bristle centreline nodes: ``shape_time`` [s] of shape (n_t,) and
     ``shape_nodes`` [mm] of shape (n_t, n_bristles, n_nodes + 1, 3), root first, head frame
-    fixed to the surface.
+    fixed to the surface. ``shape_coordinates``, kept only if the run was asked to
+    (``output.solution_file``), holds rows (time [s], the head's ODE2 coordinates [mm, rad
+    or Euler parameters]) at the shape interval, for Exudyn's SolutionViewer
+    (exubrush.viewer).
     """
 
     time: np.ndarray
@@ -60,6 +63,7 @@ class Results:
     head_height: np.ndarray
     shape_time: np.ndarray
     shape_nodes: np.ndarray
+    shape_coordinates: np.ndarray | None = None
     metadata: dict = field(default_factory=dict)
 
     @property
@@ -109,7 +113,9 @@ class Results:
             for row in zip(*columns.values(), strict=True):
                 writer.writerow(["" if np.isnan(v) else f"{v:.9g}" for v in row])
         with atomic_file(directory / "shapes.npz", "wb") as handle:
-            np.savez_compressed(handle, time=self.shape_time, nodes=self.shape_nodes)
+            extra = {} if self.shape_coordinates is None else {
+                "coordinates": self.shape_coordinates}
+            np.savez_compressed(handle, time=self.shape_time, nodes=self.shape_nodes, **extra)
         from exubrush.plotting import plot_forces
 
         with atomic_file(directory / "forces.png", "wb") as handle:
@@ -158,10 +164,12 @@ def read_results(directory: str | Path) -> Results:
     if shapes_path.is_file():
         with np.load(shapes_path) as shapes:
             shape_time, shape_nodes = shapes["time"], shapes["nodes"]
+            coordinates = shapes["coordinates"] if "coordinates" in shapes else None
     else:
         shape_time, shape_nodes = np.zeros(0), np.zeros((0, 0, 0, 3))
+        coordinates = None
     return Results(**series, shape_time=shape_time, shape_nodes=shape_nodes,
-                   metadata=metadata)
+                   shape_coordinates=coordinates, metadata=metadata)
 
 
 _SERIES = ("time", "slider_position", "normal_force", "tangential_force", "head_height")

@@ -30,8 +30,9 @@ from exubrush.parameters.case import Case
 from exubrush.parameters.fields import to_plain
 
 CHECKPOINT = ".checkpoint"
-RESULT_FILES = ("forces.csv", "run.json", "forces.png", "shapes.npz")
-ARRAYS = ("time", "reaction", "nodes")
+# exubrush view writes exudyn-solution.txt beside the results (exubrush.viewer)
+RESULT_FILES = ("forces.csv", "run.json", "forces.png", "shapes.npz", "exudyn-solution.txt")
+ARRAYS = ("time", "reaction", "nodes", "coordinates")  # coordinates: only if kept
 
 
 class RunDirectoryError(ValueError):
@@ -99,7 +100,7 @@ class RunDirectory:
         groups = {}
         for file in sorted(self.checkpoint.glob("group-*.npz")):
             with np.load(file) as data:
-                output = {key: data[key] for key in ARRAYS}
+                output = {key: data[key] for key in ARRAYS if key in data}
                 output.update(json.loads(str(data["scalars"])))
             groups[int(file.stem.split("-")[1])] = output
         return groups
@@ -107,9 +108,10 @@ class RunDirectory:
     def keep(self, index: int, output: dict) -> None:
         """Store a finished group atomically (temporary file, then rename)."""
         scalars = {k: v for k, v in output.items() if k not in ARRAYS}
+        arrays = {k: output[k] for k in ARRAYS if k in output}
         fd, temporary = tempfile.mkstemp(dir=self.checkpoint, prefix=".group-", suffix=".npz")
         with os.fdopen(fd, "wb") as handle:
-            np.savez(handle, scalars=json.dumps(scalars), **{k: output[k] for k in ARRAYS})
+            np.savez(handle, scalars=json.dumps(scalars), **arrays)
         os.replace(temporary, self.checkpoint / f"group-{index:05d}.npz")
 
     def close(self) -> None:

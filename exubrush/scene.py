@@ -11,6 +11,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import exudyn as exu
+import exudyn.graphics as graphics
 import exudyn.itemInterface as eii
 import numpy as np
 from exudyn.rigidBodyUtilities import InertiaCuboid
@@ -19,7 +20,7 @@ from exubrush.contact.exudyn_contact import add_tip_contact, contact_user_functi
 from exubrush.models.dfm import add_dfm_bristle
 from exubrush.models.geometry import BristleGeometry, can_reach, head_bristles
 from exubrush.models.howell import howell_parameters
-from exubrush.models.prb import add_prb_bristle
+from exubrush.models.prb import add_prb_bristle, stub_graphics
 from exubrush.motion import HeadMotion, head_motion
 from exubrush.parameters.case import Case
 from exubrush.reference.howell_fit import fit_prb_parameters
@@ -106,7 +107,20 @@ def _add_drive(scene: Scene, handle_node) -> None:
             )
 
 
-def build_scene(case: Case, selection: list[int] | None = None) -> Scene:
+def _drawings(case: Case, bristles: list[BristleGeometry]) -> tuple[list, list]:
+    """Graphics of the surface (a checkerboard at z = 0) and of the handle (a block above
+    the roots, and the PRB stubs) for Exudyn's renderer [mm]."""
+    size = 2.0 * (max(HANDLE_SIZE) + case.motion.amplitude)
+    surface = [graphics.CheckerBoard(point=[0.0, 0.0, 0.0], normal=[0.0, 0.0, 1.0], size=size)]
+    handle = [graphics.Brick(centerPoint=[0.0, 0.0, 0.5 * HANDLE_SIZE[2]], size=HANDLE_SIZE,
+                             color=[0.6, 0.6, 0.6, 0.5])]
+    if case.model.kind == "prb":
+        gamma = prb_parameters(case)[0]
+        handle += [piece for b in bristles for piece in stub_graphics(b, gamma)]
+    return surface, handle
+
+
+def build_scene(case: Case, selection: list[int] | None = None, drawn: bool = False) -> Scene:
     """Assemble ``case`` into a ready-to-solve Exudyn system.
 
     Parameters
@@ -114,18 +128,23 @@ def build_scene(case: Case, selection: list[int] | None = None) -> Scene:
     selection : list of int, optional
         Indices of the bristles to include (default: all). The motion is always that of
         the whole head, so a head split into groups moves identically in every group.
+    drawn : bool
+        Give surface, handle and bristles graphics for Exudyn's renderer (exubrush view);
+        a solve needs none.
     """
     all_bristles = head_bristles(case.head)
     motion, start_height = head_motion(case, all_bristles)
     bristles = all_bristles if selection is None else [all_bristles[i] for i in selection]
+    surface_drawing, handle_drawing = _drawings(case, bristles) if drawn else ([], [])
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
-    ground = mbs.AddObject(eii.ObjectGround())
+    ground = mbs.AddObject(eii.ObjectGround(
+        visualization=eii.VObjectGround(graphicsData=surface_drawing)))
     handle_inertia = InertiaCuboid(HANDLE_DENSITY, HANDLE_SIZE)
     handle = mbs.CreateRigidBody(
         referencePosition=[0.0, 0.0, start_height], inertia=handle_inertia,
-        nodeType=exu.NodeType.RotationRxyz, gravity=[0.0, 0.0, 0.0], show=False,
-        returnDict=True,
+        nodeType=exu.NodeType.RotationRxyz, gravity=[0.0, 0.0, 0.0], show=drawn,
+        graphicsDataList=handle_drawing, returnDict=True,
     )
     scene = Scene(SC, mbs, motion, SLIDE_AXES[case.motion.direction], handle_inertia.Mass(),
                   bristles)
@@ -139,10 +158,10 @@ def build_scene(case: Case, selection: list[int] | None = None) -> Scene:
     for bristle in bristles:
         if case.model.kind == "dfm":
             items = add_dfm_bristle(mbs, handle["bodyNumber"], bristle, material,
-                                    case.model.segments, origin)
+                                    case.model.segments, origin, drawn)
         else:
             items = add_prb_bristle(mbs, handle["bodyNumber"], bristle, material, gamma, k_theta,
-                                    origin)
+                                    origin, drawn)
         scene.node_sensors.append([
             mbs.AddSensor(eii.SensorNode(nodeNumber=n, storeInternal=True, writeToFile=False,
                                          outputVariableType=exu.OutputVariableType.Position))

@@ -21,6 +21,7 @@ import os
 import platform
 import queue
 import signal
+import tempfile
 import threading
 import time
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
@@ -38,7 +39,8 @@ from exubrush.results import Results
 from exubrush.rundir import RunDirectory
 from exubrush.sanity import normal_force_bound
 from exubrush.scene import SLIDE_AXES, build_scene, handle_kinematics, prb_parameters
-from exubrush.solver import dynamic_settings
+from exubrush.solver import dynamic_settings, record_coordinates
+from exubrush.viewer import head_coordinates, read_coordinate_file
 
 PROGRESS_STEP = 0.05  # s of simulated time between progress reports of a group
 
@@ -93,6 +95,11 @@ def solve_group(
     scene = build_scene(case, selection)
     end_time = scene.motion.end_time
     settings = dynamic_settings(case.solver, end_time, case.output.interval)
+    coordinates_file = None
+    if case.output.solution_file == "yes":
+        handle, coordinates_file = tempfile.mkstemp(prefix="exubrush-", suffix=".txt")
+        os.close(handle)
+        record_coordinates(settings, coordinates_file, case.output.shape_interval)
     bound = normal_force_bound(case, scene.bristles)
     reported = [0.0]
     status = {"reason": ""}
@@ -124,6 +131,10 @@ def solve_group(
     except (exu.SolverError, RuntimeError) as err:
         completed, message = False, " ".join(str(err).split())
     wall = time.perf_counter() - start
+    coordinates = None
+    if coordinates_file is not None:
+        coordinates = read_coordinate_file(coordinates_file)
+        os.unlink(coordinates_file)
     if status["reason"]:
         completed, message = False, status["reason"]
     if progress_queue is not None:
@@ -141,7 +152,7 @@ def solve_group(
         completed = False
         message = message or ("non-finite forces or positions" if not finite.all()
                               else "normal force beyond the physical bound")
-    return {
+    output = {
         "time": drive[0][:n, 0],
         "reaction": reaction[:n],
         "nodes": nodes[:, :, :n].transpose(2, 0, 1, 3),
@@ -152,6 +163,10 @@ def solve_group(
         "contacts": len(scene.contacts),
         "handle_mass": float(scene.handle_mass),
     }
+    if coordinates is not None:  # the rows up to the last sane sample
+        last = output["time"][-1] if n else -1.0
+        output["coordinates"] = coordinates[coordinates[:, 0] <= last + 1e-12]
+    return output
 
 
 def _beyond_bound(case: Case, t: float, force: float, bound: float) -> str:
@@ -306,6 +321,9 @@ def simulate(case: Case, progress: bool = True, workers: int | None = None,
         [(handle_position[rows][:, None, :] + roots[None, :, :])[:, :, None, :], nodes[rows]],
         axis=2,
     )
+    shape_coordinates = None
+    if case.output.solution_file == "yes" and n:
+        shape_coordinates = head_coordinates([o["coordinates"] for o in outputs])
     statistics = {key: sum(o["statistics"].get(key, 0) for o in ran)
                   for key in (ran[0]["statistics"] if ran else {})}
     derived = {
@@ -352,6 +370,7 @@ def simulate(case: Case, progress: bool = True, workers: int | None = None,
         head_height=handle_position[:, 2],
         shape_time=t[rows],
         shape_nodes=shape_nodes,
+        shape_coordinates=shape_coordinates,
         metadata=metadata,
     )
 

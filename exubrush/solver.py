@@ -55,3 +55,21 @@ def dynamic_settings(solver: Solver, end_time: float, output_interval: float):
         settings.linearSolver.solverType = exu.LinearSolverType.EXUdense
     settings.parallel.numberOfThreads = 1
     return settings
+
+
+def record_coordinates(settings: exu.SimulationSettings, path: str, period: float) -> None:
+    """Let the solver write the ODE2 coordinates (no velocities, accelerations, algebraic or
+    data coordinates) to the text solution file ``path`` every ``period`` [s]: the format
+    Exudyn's SolutionViewer reads (exubrush.viewer)."""
+    file = settings.solution.file
+    file.write = True
+    file.name = path
+    file.binary = False
+    file.writePeriod = period
+    file.writeInitialValues = True
+    export = file.export
+    export.velocities = False
+    export.accelerations = False
+    export.algebraicCoordinates = False
+    export.dataCoordinates = False
+    export.ODE1Velocities = False

@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import exudyn as exu
+import exudyn.graphics as graphics
 import exudyn.itemInterface as eii
 import numpy as np
 from exudyn.rigidBodyUtilities import InertiaSphere, RigidBodyInertia
@@ -65,15 +66,35 @@ def tip_sphere_inertia(bristle: BristleGeometry, density: float) -> RigidBodyIne
     return InertiaSphere(mass=density * 4.0 / 3.0 * np.pi * radius**3, radius=radius)
 
 
-def add_body(mbs, position, frame, inertia):
-    """Add a rigid body (Euler-parameter node, no gravity: it is negligible at this scale)."""
+BRISTLE_COLOUR = [0.25, 0.45, 0.8, 1.0]
+TIP_COLOUR = [0.85, 0.3, 0.2, 1.0]
+
+
+def piece_graphics(bristle: BristleGeometry, start: float, end: float,
+                   tip: bool = False) -> list:
+    """Drawing of the bristle from ``start`` to ``end`` [mm] along x of the bristle frame: a
+    box of the section's width and height (an elliptic section is drawn as its bounding
+    box), and the tip sphere centred at ``end`` if ``tip``. For Exudyn's renderer only."""
+    box = graphics.Brick(centerPoint=[0.5 * (start + end), 0.0, 0.0],
+                         size=[end - start, bristle.width, bristle.height], color=BRISTLE_COLOUR)
+    if not tip:
+        return [box]
+    return [box, graphics.Sphere(point=[end, 0.0, 0.0], radius=bristle.tip_radius,
+                                 color=TIP_COLOUR, nTiles=12)]
+
+
+def add_body(mbs, position, frame, inertia, drawing=None):
+    """Add a rigid body (Euler-parameter node, no gravity: it is negligible at this scale).
+
+    ``drawing`` is its graphics data for Exudyn's renderer (default: none, not shown)."""
     item = mbs.CreateRigidBody(
         referencePosition=list(position),
         referenceRotationMatrix=np.asarray(frame),
         inertia=inertia,
         gravity=[0.0, 0.0, 0.0],
         nodeType=exu.NodeType.RotationEulerParameters,
-        show=False,
+        graphicsDataList=drawing or [],
+        show=bool(drawing),
         returnDict=True,
     )
     return item["nodeNumber"], item["bodyNumber"]

@@ -17,6 +17,7 @@ from exubrush.models.assembly import (
     BristleItems,
     add_body,
     add_spring_damper,
+    piece_graphics,
     rigid_marker,
     slice_inertia,
     tip_sphere_inertia,
@@ -33,6 +34,7 @@ def add_dfm_bristle(
     material: Material,
     segments: int,
     handle_position=(0.0, 0.0, 0.0),
+    drawn: bool = False,
 ) -> BristleItems:
     """Add a DFM bristle clamped to ``handle_body``.
 
@@ -42,6 +44,8 @@ def add_dfm_bristle(
         Number N of rigid bodies.
     handle_position : array of 3
         Reference position of the handle body [mm]; its frame is parallel to the head frame.
+    drawn : bool
+        Give the bodies graphics for Exudyn's renderer (exubrush view).
     """
     if segments < 1:
         raise ValueError(f"a DFM bristle needs at least one segment, got {segments}")
@@ -56,8 +60,12 @@ def add_dfm_bristle(
         else:
             inertia = slice_inertia(bristle, material.density, 0.5 * L, -0.25 * L)
             inertia = inertia + tip_sphere_inertia(bristle, material.density)
+        drawing = None
+        if drawn:
+            drawing = piece_graphics(bristle, -0.5 * L, 0.5 * L if i < segments else 0.0,
+                                     tip=i == segments)
         node, body = add_body(
-            mbs, np.add(handle_position, bristle.point(i * L)), bristle.frame, inertia
+            mbs, np.add(handle_position, bristle.point(i * L)), bristle.frame, inertia, drawing
         )
         items.nodes.append(node)
         items.bodies.append(body)

@@ -9,6 +9,7 @@ formulation), which stays regular for any bending angle.
 
 from __future__ import annotations
 
+import exudyn.graphics as graphics
 import exudyn.itemInterface as eii
 import numpy as np
 
@@ -16,6 +17,7 @@ from exubrush.models.assembly import (
     BristleItems,
     add_body,
     add_spring_damper,
+    piece_graphics,
     rigid_marker,
     slice_inertia,
     tip_sphere_inertia,
@@ -33,6 +35,7 @@ def add_prb_bristle(
     gamma: float,
     stiffness_coefficient: float,
     handle_position=(0.0, 0.0, 0.0),
+    drawn: bool = False,
 ) -> BristleItems:
     """Add a PRB bristle clamped to ``handle_body``.
 
@@ -42,6 +45,9 @@ def add_prb_bristle(
         Howell's γ and K_Θ [-].
     handle_position : array of 3
         Reference position of the handle body [mm]; its frame is parallel to the head frame.
+    drawn : bool
+        Give the link graphics for Exudyn's renderer (the stub is drawn with the handle:
+        :func:`stub_graphics`).
     """
     link = gamma * bristle.length
     k = prb_torsional_stiffness(
@@ -53,7 +59,8 @@ def add_prb_bristle(
     inertia = slice_inertia(bristle, material.density, link, -0.5 * link)
     inertia = inertia + tip_sphere_inertia(bristle, material.density)
     tip = np.add(handle_position, bristle.point(bristle.length))
-    node, body = add_body(mbs, tip, bristle.frame, inertia)
+    drawing = piece_graphics(bristle, -link, 0.0, tip=True) if drawn else None
+    node, body = add_body(mbs, tip, bristle.frame, inertia, drawing)
     pivot_on_handle = rigid_marker(mbs, handle_body, bristle.point(bristle.length - link),
                                    bristle.frame)
     pivot_on_link = rigid_marker(mbs, body, [-link, 0.0, 0.0])
@@ -65,3 +72,9 @@ def add_prb_bristle(
     )
     springs = add_spring_damper(mbs, pivot_on_handle, pivot_on_link, K, C)
     return BristleItems(nodes=[node], bodies=[body], connectors=[joint, springs])
+
+
+def stub_graphics(bristle: BristleGeometry, gamma: float) -> list:
+    """Drawing of the stub (root to pivot, part of the handle) in the handle frame [mm]."""
+    stub = piece_graphics(bristle, 0.0, (1.0 - gamma) * bristle.length)
+    return [graphics.Move(g, list(bristle.point(0.0)), np.asarray(bristle.frame)) for g in stub]

@@ -206,6 +206,9 @@ class Output:
 
     interval: float = param(0.01, "force output interval", "s", above=0.0)
     shape_interval: float = param(0.1, "bristle shape output interval", "s", above=0.0)
+    solution_file: str = param(
+        "no", "also keep every node's coordinates at shape_interval, for Exudyn's "
+        "SolutionViewer (exubrush view)", "text", choices=("no", "yes"))
 
     def check(self) -> None:
         """Shapes are sampled from the force output, so not more often than it."""

@@ -19,7 +19,7 @@ def _save_run(directory, series):
     empty = np.zeros((0, 0, 0, 3))
     Results(series.time, series.slider_position, series.normal_force,
             series.tangential_force, np.zeros_like(series.time), np.zeros(0), empty,
-            {"case": "synthetic", "model": "dfm", "status": "completed"}).save(directory)
+            metadata={"case": "synthetic", "model": "dfm", "status": "completed"}).save(directory)
 
 
 def _write_measured(path, series, shift, normal_unit="mN"):

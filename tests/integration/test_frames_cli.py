@@ -1,36 +1,17 @@
 """``exubrush frames``: DFM and PRB runs drawn side by side, PNG frames and a GIF."""
 
 import json
-import subprocess
-import sys
 
 import numpy as np
-import pytest
 from PIL import Image
 
 from exubrush.frames import load_shapes
 
 
-def _exubrush(*args):
-    return subprocess.run([sys.executable, "-m", "exubrush", *args], capture_output=True,
-                          text=True, timeout=300)
-
-
-@pytest.fixture(scope="module")
-def runs(tmp_path_factory):
-    """A DFM and a PRB run of a 1 x 2 head through the approach and a short slide."""
-    root = tmp_path_factory.mktemp("frames")
-    for model in ("dfm", "prb"):
-        done = _exubrush("run", "orthogonal", "--model", model, "--periods", "0.1", "--quiet",
-                         "--set", "head.rows=1", "--set", "head.columns=2",
-                         "--out", str(root / model))
-        assert done.returncode == 0, done.stderr
-    return root
-
-
-def test_frames_and_gif_of_two_models(runs, tmp_path):
-    done = _exubrush("frames", str(runs / "dfm"), str(runs / "prb"), "--times", "0,1.5",
-                     "--gif-frames", "5", "--out", str(tmp_path))
+def test_frames_and_gif_of_two_models(two_model_runs, cli, tmp_path):
+    runs = two_model_runs
+    done = cli("frames", str(runs / "dfm"), str(runs / "prb"), "--times", "0,1.5",
+               "--gif-frames", "5", "--out", str(tmp_path))
     assert done.returncode == 0, done.stderr
     pngs = sorted(tmp_path.glob("frame_*.png"))
     assert [p.name for p in pngs] == ["frame_000_t0000.000.png", "frame_001_t0001.500.png"]
@@ -40,7 +21,8 @@ def test_frames_and_gif_of_two_models(runs, tmp_path):
         assert gif.n_frames == 5
 
 
-def test_prb_drawing_puts_the_pivot_on_the_stub(runs):
+def test_prb_drawing_puts_the_pivot_on_the_stub(two_model_runs):
+    runs = two_model_runs
     shapes = load_shapes(runs / "prb")
     gamma = json.loads((runs / "prb" / "run.json").read_text())["derived"]["prb_gamma"]
     stub = np.linalg.norm(shapes.lines[:, :, 1] - shapes.lines[:, :, 0], axis=-1)
@@ -51,13 +33,14 @@ def test_prb_drawing_puts_the_pivot_on_the_stub(runs):
     np.testing.assert_allclose(link, gamma * 5.0, atol=1e-6)
 
 
-def test_frames_refuse_times_outside_the_run(runs, tmp_path):
-    done = _exubrush("frames", str(runs / "dfm"), "--times", "99", "--out", str(tmp_path))
+def test_frames_refuse_times_outside_the_run(two_model_runs, cli, tmp_path):
+    runs = two_model_runs
+    done = cli("frames", str(runs / "dfm"), "--times", "99", "--out", str(tmp_path))
     assert done.returncode == 2
     assert "--times 99 s lie outside the stored shapes" in done.stderr
     assert "Traceback" not in done.stderr
 
 
-def test_frames_refuse_a_directory_without_results(tmp_path):
-    done = _exubrush("frames", str(tmp_path))
+def test_frames_refuse_a_directory_without_results(cli, tmp_path):
+    done = cli("frames", str(tmp_path))
     assert done.returncode == 2 and "holds no run.json" in done.stderr

@@ -153,3 +153,16 @@ def test_a_single_process_run_stops_cleanly_on_ctrl_c_or_kill(tmp_path, signal_n
     meta = json.loads((out / "run.json").read_text())
     assert meta["status"] == "interrupted", meta["message"]
     assert 0.0 < meta["simulated_time_s"] < meta["derived"]["end_time_s"]
+
+
+def test_a_resumed_group_keeps_the_coordinates_for_the_viewer(tmp_path):
+    from exubrush.parameters.io import load_case
+    from exubrush.rundir import RunDirectory
+
+    case = load_case("orthogonal", ["output.solution_file='yes'"])
+    output = {"time": np.arange(3.0), "reaction": np.zeros((3, 3)),
+              "nodes": np.zeros((3, 1, 6, 3)), "coordinates": np.arange(12.0).reshape(3, 4),
+              "completed": True, "message": ""}
+    RunDirectory(tmp_path, case).keep(0, output)
+    stored = RunDirectory(tmp_path, case).stored_groups()[0]
+    np.testing.assert_array_equal(stored["coordinates"], output["coordinates"])

@@ -1,0 +1,61 @@
+"""``exubrush run --viewer`` and ``exubrush view``: the whole head in Exudyn's SolutionViewer.
+
+No window opens here (no display); what is checked is what the viewer would show: the
+solution file, loaded into the head built with graphics, puts every node where the run
+saw it.
+"""
+
+import exudyn as exu
+import numpy as np
+import pytest
+from exudyn.utilities import LoadSolutionFile, SetSolutionState
+
+from exubrush.results import read_results
+from exubrush.viewer import SOLUTION_FILE, head_coordinates, viewer_scene
+
+
+@pytest.mark.parametrize("model", ["dfm", "prb"])
+def test_the_solution_file_replays_the_run(two_model_runs, cli, model):
+    directory = two_model_runs / model
+    done = cli("view", str(directory))
+    assert done.returncode == 0, done.stderr
+    assert "no display here" in done.stderr
+    results = read_results(directory)
+    solution = LoadSolutionFile(str(directory / SOLUTION_FILE), verbose=False)
+    assert solution["nRows"] == len(results.shape_time)
+    scene = viewer_scene(results)
+    nodes = [n for sensors in scene.node_sensors
+             for n in (scene.mbs.GetSensor(s)["nodeNumber"] for s in sensors)]
+    objects = [scene.mbs.GetObject(i) for i in range(scene.mbs.systemData.NumberOfObjects())]
+    drawn = sum(bool(item.get("VgraphicsData")) for item in objects)
+    assert drawn == len(nodes) + 2  # every bristle body, the handle and the surface
+    for row in range(solution["nRows"]):
+        SetSolutionState(scene.mbs, solution, row, exu.ConfigurationType.Visualization)
+        shown = np.array([scene.mbs.GetNodeOutput(n, exu.OutputVariableType.Position,
+                                                  exu.ConfigurationType.Visualization)
+                          for n in nodes])
+        saved = results.shape_nodes[row, :, 1:].reshape(-1, 3)
+        # 1e-9 mm: the file holds 12 significant digits of coordinates of order 1-10 mm
+        np.testing.assert_allclose(shown, saved, atol=1e-9)
+
+
+def test_view_asks_for_a_run_that_kept_its_coordinates(tmp_path, cli):
+    done = cli("run", "orthogonal", "--segments", "2", "--periods", "0.02", "--quiet",
+               "--set", "head.rows=1", "--set", "head.columns=1", "--out", str(tmp_path))
+    assert done.returncode == 0, done.stderr
+    done = cli("view", str(tmp_path))
+    assert done.returncode == 2
+    assert "kept no node coordinates: run the case again with --viewer" in done.stderr
+    assert "Traceback" not in done.stderr
+
+
+def test_groups_join_into_the_head_once_with_its_handle():
+    time = np.array([[0.0], [0.1]])
+    first = np.hstack([time, np.ones((2, 6)), np.full((2, 3), 2.0)])
+    second = np.hstack([time, np.ones((2, 6)), np.full((2, 3), 3.0)])
+    joined = head_coordinates([first, second])
+    np.testing.assert_array_equal(joined[0], [0.0, *[1.0] * 6, *[2.0] * 3, *[3.0] * 3])
+    late = second.copy()
+    late[1, 0] = 0.2
+    with pytest.raises(ValueError, match="not at the same times"):
+        head_coordinates([first, late])
