@@ -103,11 +103,14 @@ def has_display() -> bool:
 def open_viewer(scene, solution_path: Path) -> None:
     """Open Exudyn's renderer and SolutionViewer on ``scene`` (from :func:`viewer_scene`)
     replaying ``solution_path``; returns when the window is closed."""
+    from exudyn.rigidBodyUtilities import RotationMatrixX
     from exudyn.utilities import LoadSolutionFile
 
     solution = LoadSolutionFile(str(solution_path), verbose=False)
     container = scene.system_container
-    container.visualizationSettings.general.autoFitScene = False  # no refit while playing
+    # looking at the head from the side, slightly from above, z up (turn it with the mouse)
+    container.visualizationSettings.openGL.initialModelRotation = (
+        RotationMatrixX(np.radians(70.0)).tolist())
     container.renderer.Start()
     try:
         scene.mbs.SolutionViewer(solution, runOnStart=True, runMode=0,
