@@ -86,12 +86,19 @@ def _add_drive(scene: Scene, handle_node) -> None:
     mbs = scene.mbs
     ground_node = mbs.AddNode(eii.NodePointGround())
     ground_marker = mbs.AddMarker(eii.MarkerNodeCoordinate(nodeNumber=ground_node, coordinate=0))
+    motion = scene.motion
     for axis in range(6):
         marker = mbs.AddMarker(eii.MarkerNodeCoordinate(nodeNumber=handle_node, coordinate=axis))
+        # the handle's displacement along this axis: slide component plus descent (z only).
+        # Called several times per Newton step: plain scalar arithmetic, no arrays (a
+        # function that built the whole kinematics cost ~25 % of a bristle's solve), and
+        # none at all on an axis that never moves.
+        along = float(scene.slide_axis[axis]) if axis < 3 else 0.0
+        down = 1.0 if axis == 2 else 0.0
         offset_function = 0
-        if axis < 3:
-            def offset_function(mbs, t, itemNumber, lOffset, axis=axis):
-                return float(handle_kinematics(scene.motion, scene.slide_axis, t)[0][axis])
+        if along or down:
+            def offset_function(mbs, t, itemNumber, lOffset, along=along, down=down):
+                return along * motion.sliding(t)[0] - down * motion.descent(t)[0]
         constraint = mbs.AddObject(
             eii.ObjectConnectorCoordinate(
                 markerNumbers=[ground_marker, marker],
