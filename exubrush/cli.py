@@ -11,6 +11,7 @@ import numpy as np
 
 from exubrush.parameters.fields import ParameterError, to_toml
 from exubrush.parameters.io import load_case
+from exubrush.presets import PRESETS, preset_overrides
 from exubrush.units import UnitError
 
 
@@ -39,9 +40,13 @@ def main() -> None:
 @click.option("--overwrite", is_flag=True,
               help="Replace exubrush results already in --out (other files are never touched).")
 @click.option("--quiet", is_flag=True, help="No progress bar.")
+@click.option("--preset", type=click.Choice(list(PRESETS)),
+              help="Solver settings measured on the run-time/error front (README, "
+                   "Performance): fast, balanced (= the defaults) or accurate; --segments "
+                   "and --set override it.")
 @click.option("--viewer", is_flag=True, help="Also keep every node's coordinates at the "
               "shape interval, to open the run with 'exubrush view' (output.solution_file).")
-def run(case, model, segments, periods, out, overrides, overwrite, quiet, viewer):
+def run(case, model, segments, periods, out, overrides, overwrite, quiet, preset, viewer):
     """Simulate CASE (orthogonal, parallel or a TOML case file) and save the results.
 
     Finished bristles are kept in OUT/.checkpoint while the run goes on: after Ctrl-C, a
@@ -52,7 +57,8 @@ def run(case, model, segments, periods, out, overrides, overwrite, quiet, viewer
                  f"motion.periods={periods}" if periods is not None else None,
                  "output.solution_file='yes'" if viewer else None]
     try:
-        parameters = load_case(case, [*filter(None, shortcuts), *overrides])
+        parameters = load_case(case, [*preset_overrides(preset), *filter(None, shortcuts),
+                                      *overrides])
     except (ParameterError, UnitError) as err:
         _fail(str(err))
     _warn_unreachable(parameters)

@@ -99,7 +99,9 @@ def solve_group(
     if case.output.solution_file == "yes":
         handle, coordinates_file = tempfile.mkstemp(prefix="exubrush-", suffix=".txt")
         os.close(handle)
-        record_coordinates(settings, coordinates_file, case.output.shape_interval)
+        # at the force interval: interpolated onto the shape grid between the same records
+        # as the node positions (on_output_grid), so both say the same
+        record_coordinates(settings, coordinates_file, case.output.interval)
     bound = normal_force_bound(case, scene.bristles)
     reported = [0.0]
     status = {"reason": ""}
@@ -152,10 +154,14 @@ def solve_group(
         completed = False
         message = message or ("non-finite forces or positions" if not finite.all()
                               else "normal force beyond the physical bound")
+    recorded = drive[0][:n, 0]
+    grid, reaction = on_output_grid(recorded, reaction[:n], case.output.interval)
+    _, nodes = on_output_grid(recorded, nodes[:, :, :n].transpose(2, 0, 1, 3),
+                              case.output.interval)
     output = {
-        "time": drive[0][:n, 0],
-        "reaction": reaction[:n],
-        "nodes": nodes[:, :, :n].transpose(2, 0, 1, 3),
+        "time": grid,
+        "reaction": reaction,
+        "nodes": nodes,
         "statistics": _solver_statistics(scene.mbs),
         "completed": bool(completed and n > 0 and drive[0][n - 1, 0] >= end_time - 1e-9),
         "message": message,
@@ -164,9 +170,27 @@ def solve_group(
         "handle_mass": float(scene.handle_mass),
     }
     if coordinates is not None:  # the rows up to the last sane sample
-        last = output["time"][-1] if n else -1.0
-        output["coordinates"] = coordinates[coordinates[:, 0] <= last + 1e-12]
+        kept = coordinates[coordinates[:, 0] <= (recorded[-1] if n else -1.0) + 1e-12]
+        shape_grid, values = on_output_grid(kept[:, 0], kept[:, 1:], case.output.shape_interval)
+        output["coordinates"] = np.column_stack([shape_grid, values])
     return output
+
+
+def on_output_grid(times: np.ndarray, values: np.ndarray, interval: float):
+    """Samples onto exact multiples of ``interval`` [s], by linear interpolation.
+
+    Exudyn records a sensor or solution row at the first step end at or after each
+    multiple of the write period, so after a step cut two bristles' rows can be a step
+    apart. Interpolated onto the same grid, rows of different bristles add up at the same
+    time. The grid ends at the last record; ``values`` has the records along axis 0.
+    """
+    if len(times) == 0:
+        return np.zeros(0), values[:0]
+    count = int(np.floor(times[-1] / interval + 1e-9)) + 1
+    grid = np.arange(count) * interval
+    columns = values.reshape(len(times), -1).T
+    resampled = np.array([np.interp(grid, times, column) for column in columns]).T
+    return grid, resampled.reshape((count, *values.shape[1:]))
 
 
 def _beyond_bound(case: Case, t: float, force: float, bound: float) -> str:

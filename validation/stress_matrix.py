@@ -59,8 +59,8 @@ def cells(full: bool) -> list[Cell]:
     """The matrix; ``full`` adds the parallel case, the PRB model and the costly cells."""
     axes = [
         ("default", []),
-        ("step x3", ["solver.step_size='3e-3 s'"]),
-        ("step x10", ["solver.step_size='1e-2 s'"]),
+        ("step 3 ms", ["solver.step_size='3 ms'"]),
+        ("step 10 ms", ["solver.step_size='10 ms'"]),
         ("E 1 MPa", ["head.material.youngs_modulus='1 MPa'"]),
         ("E 20 MPa", ["head.material.youngs_modulus='20 MPa'"]),
         ("nylon head", NYLON),

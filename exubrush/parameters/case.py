@@ -166,13 +166,14 @@ class Motion:
 class Solver:
     """Exudyn implicit solver settings (generalized-alpha)."""
 
-    step_size: float = param(1e-3, "maximum (initial) time step", "s", above=0.0)
+    # defaults = the "balanced" preset (exubrush.presets; README, Performance)
+    step_size: float = param(2e-3, "maximum (initial) time step", "s", "ms", above=0.0)
     minimum_step_size: float = param(1e-9, "smallest step of the automatic step reduction",
                                      "s", above=0.0)
     spectral_radius: float = param(
         0.0, "generalized-alpha spectral radius at infinity (0 = most damping)", minimum=0.0
     )
-    relative_tolerance: float = param(1e-8, "Newton relative tolerance", above=0.0)
+    relative_tolerance: float = param(1e-6, "Newton relative tolerance", above=0.0)
     absolute_tolerance: float = param(1e-10, "Newton absolute tolerance (residual)", above=0.0)
     modified_newton: str = param("yes", "reuse the Jacobian between steps", "text",
                                  choices=("yes", "no"))

@@ -15,7 +15,7 @@ sys.modules["stress_matrix"] = stress_matrix  # dataclasses look their module up
 _SPEC.loader.exec_module(stress_matrix)
 
 CELLS = {c.name: c for c in stress_matrix.cells(full=True)}
-REDUCED = ["orthogonal dfm: step x10", "orthogonal dfm: no damping",
+REDUCED = ["orthogonal dfm: step 10 ms", "orthogonal dfm: no damping",
            "orthogonal dfm: contact k x100", "parallel prb: mu 1.5"]
 
 

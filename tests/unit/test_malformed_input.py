@@ -24,7 +24,7 @@ MALFORMED = [
     ("set", ["motion.periods=-1"], "motion.periods: -1 must be > 0"),
     ("set", ["motion.approach_duration='0 s'"], "approach_duration: 0 s must be > 0 s"),
     ("set", ["motion.hold_duration='-1 s'"], "hold_duration: -1 s must be >= 0 s"),
-    ("set", ["solver.step_size='0 s'"], "solver.step_size: 0 s must be > 0 s"),
+    ("set", ["solver.step_size='0 s'"], "solver.step_size: 0 s must be > 0 ms"),
     ("set", ["output.interval='0 s'"], "output.interval: 0 s must be > 0 s"),
     # material and contact ranges
     ("set", ["head.material.poisson_ratio=0.5"], "poisson_ratio: 0.5 must be < 0.5"),

@@ -52,3 +52,17 @@ def test_slide_csv_with_units(tmp_path):
     table = read_slide_csv(path)
     assert table.duration == pytest.approx(1.0)
     assert table.evaluate(1.0)[0] == pytest.approx(4.0)
+
+
+def test_records_at_step_ends_land_on_the_output_grid():
+    from exubrush.simulation import on_output_grid
+
+    # records at the first step end at or after each 0.01 s, as Exudyn writes them
+    times = np.array([0.0, 0.0104, 0.02, 0.0301, 0.0407])
+    values = np.column_stack([3.0 * times + 1.0, -times])  # linear: interpolation is exact
+    grid, resampled = on_output_grid(times, values, 0.01)
+    np.testing.assert_allclose(grid, [0.0, 0.01, 0.02, 0.03, 0.04], atol=1e-15)
+    np.testing.assert_allclose(resampled, np.column_stack([3.0 * grid + 1.0, -grid]),
+                               atol=1e-12)
+    nodes = np.zeros((5, 2, 3, 3))  # any trailing shape is kept
+    assert on_output_grid(times, nodes, 0.01)[1].shape == (5, 2, 3, 3)

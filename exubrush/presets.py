@@ -1,0 +1,47 @@
+"""Solver presets: points on the run-time/error front measured by the benchmark harness.
+
+Each preset is a list of parameter overrides applied before the user's own ``--set``
+overrides. The errors and times quoted are those of
+``python validation/benchmarks/benchmark.py`` on the default 48-bristle head, orthogonal
+case (approach plus one period), against DFM N = 24 at 0.25 ms, on a 2-core machine; the
+README's performance table has them all. ``balanced`` is what the case defaults are.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True)
+class Preset:
+    """Overrides of one preset and what the harness measured for them (DFM model)."""
+
+    overrides: tuple[str, ...]
+    flat_error: float  # largest flat-zone F_n/F_t difference against the reference [-]
+    description: str
+
+
+PRESETS = {
+    "fast": Preset(
+        ("model.segments=6", "solver.step_size='5 ms'", "solver.relative_tolerance=1e-6"),
+        0.015, "DFM N = 6, 5 ms steps, Newton rtol 1e-6 (flat zone: -0.7 % on the default "
+        "head, F_t -1.2 % on a 1 x 2 head)",
+    ),
+    "balanced": Preset(
+        ("model.segments=6", "solver.step_size='2 ms'", "solver.relative_tolerance=1e-6"),
+        0.01, "DFM N = 6, 2 ms steps, Newton rtol 1e-6 (the case defaults)",
+    ),
+    "accurate": Preset(
+        ("model.segments=12", "solver.step_size='2 ms'", "solver.relative_tolerance=1e-6"),
+        0.01, "DFM N = 12, 2 ms steps, Newton rtol 1e-6",
+    ),
+}
+
+
+def preset_overrides(name: str | None) -> list[str]:
+    """The overrides of preset ``name`` (none for None)."""
+    if name is None:
+        return []
+    if name not in PRESETS:
+        raise ValueError(f"unknown preset {name!r}; use one of {', '.join(PRESETS)}")
+    return list(PRESETS[name].overrides)
