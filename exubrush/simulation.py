@@ -135,8 +135,10 @@ def solve_group(
     wall = time.perf_counter() - start
     coordinates = None
     if coordinates_file is not None:
-        coordinates = read_coordinate_file(coordinates_file)
-        os.unlink(coordinates_file)
+        try:
+            coordinates = read_coordinate_file(coordinates_file)
+        finally:
+            os.unlink(coordinates_file)
     if status["reason"]:
         completed, message = False, status["reason"]
     if progress_queue is not None:

@@ -24,11 +24,13 @@ SOLUTION_FILE = "exudyn-solution.txt"
 
 
 def read_coordinate_file(path: str | Path) -> np.ndarray:
-    """Rows of an Exudyn text solution file holding ODE2 coordinates only, time first."""
-    from exudyn.utilities import LoadSolutionFile
+    """Rows of an Exudyn text solution file holding ODE2 coordinates only, time first (any
+    number of rows, none included: a solve may stop early)."""
+    import warnings
 
-    solution = LoadSolutionFile(str(path), verbose=False)
-    return np.atleast_2d(np.asarray(solution["data"], dtype=float))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UserWarning)  # numpy's "empty input file"
+        return np.loadtxt(path, comments="#", delimiter=",", ndmin=2)
 
 
 def head_coordinates(groups: list[np.ndarray]) -> np.ndarray:

@@ -59,3 +59,14 @@ def test_groups_join_into_the_head_once_with_its_handle():
     late[1, 0] = 0.2
     with pytest.raises(ValueError, match="not at the same times"):
         head_coordinates([first, late])
+
+
+@pytest.mark.parametrize("rows", [0, 1, 3])
+def test_a_solution_file_of_any_length_reads_back(tmp_path, rows):
+    from exubrush.viewer import read_coordinate_file, write_solution_file
+
+    written = np.arange(8.0 * rows).reshape(rows, 8)
+    write_solution_file(tmp_path / "solution.txt", written, "test")
+    read = read_coordinate_file(tmp_path / "solution.txt")
+    assert read.shape[0] == rows
+    np.testing.assert_array_equal(read.reshape(written.shape), written)
