@@ -114,15 +114,14 @@ def _add_drive(scene: Scene, handle_node) -> None:
             )
 
 
-def _drawings(case: Case, bristles: list[BristleGeometry]) -> tuple[list, list]:
+def _drawings(case: Case, bristles: list[BristleGeometry], gamma: float | None):
     """Graphics of the surface (a checkerboard at z = 0) and of the handle (a block above
-    the roots, and the PRB stubs) for Exudyn's renderer [mm]."""
+    the roots, and the PRB stubs of a link factor ``gamma``) for Exudyn's renderer [mm]."""
     size = 2.0 * (max(HANDLE_SIZE) + case.motion.amplitude)
     surface = [graphics.CheckerBoard(point=[0.0, 0.0, 0.0], normal=[0.0, 0.0, 1.0], size=size)]
     handle = [graphics.Brick(centerPoint=[0.0, 0.0, 0.5 * HANDLE_SIZE[2]], size=HANDLE_SIZE,
                              color=[0.6, 0.6, 0.6, 0.5])]
-    if case.model.kind == "prb":
-        gamma = prb_parameters(case)[0]
+    if gamma is not None:
         handle += [piece for b in bristles for piece in stub_graphics(b, gamma)]
     return surface, handle
 
@@ -142,7 +141,8 @@ def build_scene(case: Case, selection: list[int] | None = None, drawn: bool = Fa
     all_bristles = head_bristles(case.head)
     motion, start_height = head_motion(case, all_bristles)
     bristles = all_bristles if selection is None else [all_bristles[i] for i in selection]
-    surface_drawing, handle_drawing = _drawings(case, bristles) if drawn else ([], [])
+    gamma, k_theta = prb_parameters(case) if case.model.kind == "prb" else (None, None)
+    surface_drawing, handle_drawing = _drawings(case, bristles, gamma) if drawn else ([], [])
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
     ground = mbs.AddObject(eii.ObjectGround(
@@ -160,8 +160,6 @@ def build_scene(case: Case, selection: list[int] | None = None, drawn: bool = Fa
     laws = {}
     origin = (0.0, 0.0, start_height)
     material = case.head.material
-    if case.model.kind == "prb":
-        gamma, k_theta = prb_parameters(case)
     for bristle in bristles:
         if case.model.kind == "dfm":
             items = add_dfm_bristle(mbs, handle["bodyNumber"], bristle, material,
