@@ -2,8 +2,6 @@
 
 import csv
 import json
-import subprocess
-import sys
 import tomllib
 
 import pytest
@@ -12,14 +10,9 @@ REQUIRED_COLUMNS = ["time [s]", "slider_position [mm]", "travelled_distance [mm]
                     "normal_force [N]", "tangential_force [N]", "friction_coefficient [-]"]
 
 
-def _exubrush(*args):
-    return subprocess.run([sys.executable, "-m", "exubrush", *args], capture_output=True,
-                          text=True, timeout=300)
-
-
-def test_small_run_writes_complete_results(tmp_path):
+def test_small_run_writes_complete_results(cli, tmp_path):
     out = tmp_path / "run"
-    done = _exubrush("run", "parallel", "--model", "prb", "--periods", "0.05", "--quiet",
+    done = cli("run", "parallel", "--model", "prb", "--periods", "0.05", "--quiet",
                      "--set", "head.rows=1", "--set", "head.columns=1", "--out", str(out))
     assert done.returncode == 0, done.stderr
     assert f"results in {out}" in done.stdout
@@ -35,16 +28,16 @@ def test_small_run_writes_complete_results(tmp_path):
     assert (out / "forces.png").stat().st_size > 10_000
 
 
-def test_progress_bar_reaches_the_end(tmp_path):
-    done = _exubrush("run", "orthogonal", "--segments", "2", "--periods", "0.05",
+def test_progress_bar_reaches_the_end(cli, tmp_path):
+    done = cli("run", "orthogonal", "--segments", "2", "--periods", "0.05",
                      "--set", "head.rows=1", "--set", "head.columns=2", "--out", str(tmp_path))
     assert done.returncode == 0, done.stderr
     last = done.stderr.replace("\r", "\n").strip().splitlines()[-1]
     assert "100%" in last and "1.80/1.80 s simulated" in last, last
 
 
-def test_case_prints_toml_that_runs_back(tmp_path):
-    done = _exubrush("case", "orthogonal")
+def test_case_prints_toml_that_runs_back(cli, tmp_path):
+    done = cli("case", "orthogonal")
     assert done.returncode == 0
     data = tomllib.loads(done.stdout)
     assert data["head"]["material"]["youngs_modulus"] == "7.5 MPa"
@@ -59,8 +52,8 @@ def test_case_prints_toml_that_runs_back(tmp_path):
     (["run", "orthogonal", "--set", "motion.interaction_distance='9 mm'"], "no bristle"),
     (["case", "missing.toml"], "case file 'missing.toml' does not exist"),
 ])
-def test_user_mistakes_give_one_line_and_exit_2(args, message):
-    done = _exubrush(*args)
+def test_user_mistakes_give_one_line_and_exit_2(cli, args, message):
+    done = cli(*args)
     assert done.returncode == 2
     assert message in done.stderr
     assert "Traceback" not in done.stderr

@@ -2,17 +2,10 @@
 
 import csv
 import json
-import subprocess
-import sys
 
 import numpy as np
 
 from exubrush.results import Results
-
-
-def _exubrush(*args):
-    return subprocess.run([sys.executable, "-m", "exubrush", *args], capture_output=True,
-                          text=True, timeout=120)
 
 
 def _save_run(directory, series):
@@ -34,10 +27,10 @@ def _write_measured(path, series, shift, normal_unit="mN"):
             writer.writerow([f"{v:.9g}" for v in row])
 
 
-def test_compare_writes_summary_and_plots(tmp_path, sine_run):
+def test_compare_writes_summary_and_plots(cli, tmp_path, sine_run):
     _save_run(tmp_path / "run", sine_run())
     _write_measured(tmp_path / "rig.csv", sine_run(scale=1.1), shift=0.5)
-    done = _exubrush("compare", str(tmp_path / "run"), str(tmp_path / "rig.csv"),
+    done = cli("compare", str(tmp_path / "run"), str(tmp_path / "rig.csv"),
                      "--align", "position", "--out", str(tmp_path / "cmp"))
     assert done.returncode == 0, done.stderr
     record = json.loads((tmp_path / "cmp" / "comparison.json").read_text())
@@ -55,27 +48,27 @@ def test_compare_writes_summary_and_plots(tmp_path, sine_run):
         assert (tmp_path / "cmp" / name).stat().st_size > 10_000
 
 
-def test_compare_refuses_a_directory_without_results(tmp_path, sine_run):
+def test_compare_refuses_a_directory_without_results(cli, tmp_path, sine_run):
     _write_measured(tmp_path / "rig.csv", sine_run(), shift=0.0)
-    done = _exubrush("compare", str(tmp_path), str(tmp_path / "rig.csv"))
+    done = cli("compare", str(tmp_path), str(tmp_path / "rig.csv"))
     assert done.returncode == 2
     assert "holds no run.json" in done.stderr and "Traceback" not in done.stderr
 
 
-def test_compare_refuses_a_measured_file_without_units(tmp_path, sine_run):
+def test_compare_refuses_a_measured_file_without_units(cli, tmp_path, sine_run):
     _save_run(tmp_path / "run", sine_run())
     (tmp_path / "rig.csv").write_text("time,slider_position [mm],normal_force [N],"
                                       "tangential_force [N]\n0,0,1,0\n1,1,1,0\n")
-    done = _exubrush("compare", str(tmp_path / "run"), str(tmp_path / "rig.csv"))
+    done = cli("compare", str(tmp_path / "run"), str(tmp_path / "rig.csv"))
     assert done.returncode == 2
     assert "column 'time' has no unit" in done.stderr and "Traceback" not in done.stderr
 
 
-def test_a_file_declaring_model_output_is_never_called_a_measurement(tmp_path, sine_run):
+def test_a_file_declaring_model_output_is_never_called_a_measurement(cli, tmp_path, sine_run):
     _save_run(tmp_path / "run", sine_run())
     path = tmp_path / "demo.csv"
     _write_measured(path, sine_run(), shift=0.0)
     path.write_text("# NOT MEASURED DATA: model output\n" + path.read_text())
-    done = _exubrush("compare", str(tmp_path / "run"), str(path), "--out", str(tmp_path / "c"))
+    done = cli("compare", str(tmp_path / "run"), str(path), "--out", str(tmp_path / "c"))
     assert done.returncode == 0, done.stderr
     assert "declares it model output" in (tmp_path / "c" / "comparison.md").read_text()

@@ -23,11 +23,6 @@ def _small(periods):
     return [*SMALL[:5], periods, *SMALL[6:]]
 
 
-def _exubrush(*args, timeout=300):
-    return subprocess.run([sys.executable, "-m", "exubrush", *args], capture_output=True,
-                          text=True, timeout=timeout)
-
-
 def _start(out):
     return subprocess.Popen([sys.executable, "-m", "exubrush", *SMALL, "--out", str(out)],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
@@ -52,14 +47,14 @@ def _read_forces(path):
 
 
 @pytest.fixture(scope="module")
-def uninterrupted(tmp_path_factory):
+def uninterrupted(cli, tmp_path_factory):
     out = tmp_path_factory.mktemp("reference") / "run"
-    done = _exubrush(*SMALL, "--out", str(out))
+    done = cli(*SMALL, "--out", str(out))
     assert done.returncode == 0, done.stderr
     return _read_forces(out / "forces.csv")
 
 
-def test_sigterm_keeps_complete_marked_results_and_the_rerun_resumes(tmp_path, uninterrupted):
+def test_sigterm_keeps_complete_marked_results_and_the_rerun_resumes(cli, tmp_path, uninterrupted):
     out = tmp_path / "run"
     process = _start(out)
     _wait_for_first_finished_group(out, process)
@@ -74,7 +69,7 @@ def test_sigterm_keeps_complete_marked_results_and_the_rerun_resumes(tmp_path, u
         partial = _read_forces(out / "forces.csv")
         assert partial[-1, 0] == pytest.approx(meta["simulated_time_s"])
         assert np.all(np.isfinite(partial[:, [0, 1, 3, 4]]))
-    again = _exubrush(*SMALL, "--out", str(out))
+    again = cli(*SMALL, "--out", str(out))
     assert again.returncode == 0, again.stderr
     assert "resuming:" in again.stderr
     assert json.loads((out / "run.json").read_text())["status"] == "completed"
@@ -83,7 +78,7 @@ def test_sigterm_keeps_complete_marked_results_and_the_rerun_resumes(tmp_path, u
     np.testing.assert_array_equal(_read_forces(out / "forces.csv"), uninterrupted)
 
 
-def test_sigkill_leaves_no_half_written_file_and_the_rerun_resumes(tmp_path, uninterrupted):
+def test_sigkill_leaves_no_half_written_file_and_the_rerun_resumes(cli, tmp_path, uninterrupted):
     out = tmp_path / "run"
     process = _start(out)
     _wait_for_first_finished_group(out, process)
@@ -94,33 +89,33 @@ def test_sigkill_leaves_no_half_written_file_and_the_rerun_resumes(tmp_path, uni
     for group in (out / ".checkpoint").glob("group-*.npz"):
         with np.load(group) as data:
             assert np.all(np.isfinite(data["reaction"]))
-    again = _exubrush(*SMALL, "--out", str(out))
+    again = cli(*SMALL, "--out", str(out))
     assert again.returncode == 0, again.stderr
     np.testing.assert_array_equal(_read_forces(out / "forces.csv"), uninterrupted)
 
 
-def test_existing_results_are_never_mixed(tmp_path):
+def test_existing_results_are_never_mixed(cli, tmp_path):
     out = tmp_path / "run"
-    first = _exubrush(*_small("0.02"), "--out", str(out))
+    first = cli(*_small("0.02"), "--out", str(out))
     assert first.returncode == 0, first.stderr
-    same = _exubrush(*_small("0.02"), "--out", str(out))
+    same = cli(*_small("0.02"), "--out", str(out))
     assert same.returncode == 2 and "already holds complete results" in same.stderr
-    other = _exubrush(*_small("0.03"), "--out", str(out))
+    other = cli(*_small("0.03"), "--out", str(out))
     assert other.returncode == 2 and "pass --overwrite" in other.stderr
-    replaced = _exubrush(*_small("0.03"), "--out", str(out), "--overwrite")
+    replaced = cli(*_small("0.03"), "--out", str(out), "--overwrite")
     assert replaced.returncode == 0, replaced.stderr
     meta = json.loads((out / "run.json").read_text())
     assert meta["parameters"]["motion"]["periods"] == 0.03
     (out / "notes.txt").write_text("mine")
-    foreign = _exubrush(*_small("0.02"), "--out", str(out), "--overwrite")
+    foreign = cli(*_small("0.02"), "--out", str(out), "--overwrite")
     assert foreign.returncode == 2 and "files exubrush did not write (notes.txt)" in foreign.stderr
     assert (out / "notes.txt").read_text() == "mine"
 
 
-def test_a_failed_solve_keeps_its_partial_results_with_the_reason(tmp_path):
+def test_a_failed_solve_keeps_its_partial_results_with_the_reason(cli, tmp_path):
     out = tmp_path / "run"
     # a contact 1000x stiffer than the paper's with no step reduction cannot converge
-    done = _exubrush("run", "orthogonal", "--segments", "2", "--periods", "0.2", "--quiet",
+    done = cli("run", "orthogonal", "--segments", "2", "--periods", "0.2", "--quiet",
                      "--set", "head.rows=1", "--set", "head.columns=1",
                      "--set", "solver.step_size='0.01 s'",
                      "--set", "solver.minimum_step_size='0.01 s'",
