@@ -163,10 +163,10 @@ def build_scene(case: Case, selection: list[int] | None = None, drawn: bool = Fa
     for bristle in bristles:
         if case.model.kind == "dfm":
             items = add_dfm_bristle(mbs, handle["bodyNumber"], bristle, material,
-                                    case.model.segments, origin, drawn)
+                                    case.model.segments, origin, drawn, case.model.rotation)
         else:
             items = add_prb_bristle(mbs, handle["bodyNumber"], bristle, material, gamma, k_theta,
-                                    origin, drawn)
+                                    origin, drawn, case.model.rotation)
         scene.node_sensors.append([
             mbs.AddSensor(eii.SensorNode(nodeNumber=n, storeInternal=True, writeToFile=False,
                                          outputVariableType=exu.OutputVariableType.Position))

@@ -213,12 +213,14 @@ def _groups(case: Case, count: int) -> list[list[int] | None]:
 
 
 def _drain(updates, bar, share: float) -> None:
-    """Move the workers' progress reports (simulated seconds) onto the bar."""
+    """Move the workers' progress reports (simulated seconds) onto the bar, never past its
+    end (the reports add up to the total only within round-off; past it tqdm warns)."""
     while True:
         try:
-            bar.update(updates.get_nowait() * share)
+            step = updates.get_nowait() * share
         except queue.Empty:
             return
+        bar.update(max(0.0, min(step, bar.total - bar.n)))
 
 
 @contextlib.contextmanager

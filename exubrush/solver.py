@@ -26,8 +26,11 @@ def dynamic_settings(solver: Solver, end_time: float, output_interval: float):
     at stroke reversals needs tiny steps) with a quick recovery (``step_recovery_steps``:
     the step may double again after 2 good steps instead of Exudyn's 10, which kept the
     step tiny through stick-slip chatter), ``adaptInitialResidual`` off (with it on, a
-    diverged first iteration resets the reference residual and a wrong step can pass), and
-    no solution-norm bound (a small one caused false failures at snap-through).
+    diverged first iteration resets the reference residual and a wrong step can pass), no
+    solution-norm bound (a small one caused false failures at snap-through), and
+    ``newton_iterations`` (12) Newton iterations per try: a step that has not converged by
+    then is cut at once instead of after Exudyn's 25 full-Newton iterations, each with a
+    fresh Jacobian (on five DFM bristles: 17 % less wall time, 24 % fewer Jacobians).
     """
     settings = quiet(exu.SimulationSettings())
     ti = settings.timeIntegration
@@ -43,18 +46,29 @@ def dynamic_settings(solver: Solver, end_time: float, output_interval: float):
     ti.newton.relativeTolerance = solver.relative_tolerance
     ti.newton.absoluteTolerance = solver.absolute_tolerance
     ti.newton.adaptInitialResidual = False
+    ti.newton.maxIterations = solver.newton_iterations
     settings.solution.sensors.writePeriod = output_interval
-    if solver.partition == "coupled":
-        # a whole head has thousands of coordinates with a block-sparse Jacobian
-        settings.linearSolver.solverType = exu.LinearSolverType.EigenSparse
-        settings.linearSolver.reuseAnalyzedPattern = True
-    else:
-        # one bristle is small, and the dense LU lets Exudyn cut the step when the Jacobian
-        # turns singular (a PRB link swinging round at a reversal, where the Stribeck
-        # friction's negative slope cancels the inertia); EigenSparse stops the run there
-        settings.linearSolver.solverType = exu.LinearSolverType.EXUdense
+    settings.linearSolver.solverType = getattr(exu.LinearSolverType, linear_solver(solver))
+    # a coupled head's sparsity pattern never changes between steps
+    settings.linearSolver.reuseAnalyzedPattern = True
     settings.parallel.numberOfThreads = 1
     return settings
+
+
+def linear_solver(solver: Solver) -> str:
+    """Name of the Exudyn linear solver for ``solver.linear_solver``.
+
+    "auto": a whole head ("coupled") has thousands of coordinates with a block-sparse
+    Jacobian, so EigenSparse; one bristle has a few dozen, so a dense LU. EigenDense (partial
+    pivoting) solved five DFM bristles 20 % faster than EXUdense, with 0.4 % more steps and
+    mean forces within 0.01 %; like EXUdense, it lets Exudyn cut the step where the Jacobian
+    turns singular (a PRB link
+    swinging round at a reversal, where the Stribeck friction's negative slope cancels the
+    inertia); EigenSparse stops the run there.
+    """
+    if solver.linear_solver != "auto":
+        return solver.linear_solver
+    return "EigenSparse" if solver.partition == "coupled" else "EigenDense"
 
 
 def record_coordinates(settings: exu.SimulationSettings, path: str, period: float) -> None:

@@ -83,16 +83,25 @@ def piece_graphics(bristle: BristleGeometry, start: float, end: float,
                                  color=TIP_COLOUR, nTiles=12)]
 
 
-def add_body(mbs, position, frame, inertia, drawing=None):
-    """Add a rigid body (Euler-parameter node, no gravity: it is negligible at this scale).
+NODE_TYPES = {
+    "euler-parameters": exu.NodeType.RotationEulerParameters,
+    "rotation-vector": exu.NodeType.RotationRotationVector,
+}
 
-    ``drawing`` is its graphics data for Exudyn's renderer (default: none, not shown)."""
+
+def add_body(mbs, position, frame, inertia, drawing=None, rotation="euler-parameters"):
+    """Add a rigid body (no gravity: it is negligible at this scale).
+
+    ``drawing`` is its graphics data for Exudyn's renderer (default: none, not shown).
+    ``rotation`` names its node's rotation coordinates (:data:`NODE_TYPES`): both are
+    regular at any bending angle, unlike Tait-Bryan angles, which are singular where a
+    bristle frame's x axis points down."""
     item = mbs.CreateRigidBody(
         referencePosition=list(position),
         referenceRotationMatrix=np.asarray(frame),
         inertia=inertia,
         gravity=[0.0, 0.0, 0.0],
-        nodeType=exu.NodeType.RotationEulerParameters,
+        nodeType=NODE_TYPES[rotation],
         graphicsDataList=drawing or [],
         show=bool(drawing),
         returnDict=True,

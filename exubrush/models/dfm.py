@@ -35,6 +35,7 @@ def add_dfm_bristle(
     segments: int,
     handle_position=(0.0, 0.0, 0.0),
     drawn: bool = False,
+    rotation: str = "euler-parameters",
 ) -> BristleItems:
     """Add a DFM bristle clamped to ``handle_body``.
 
@@ -46,6 +47,8 @@ def add_dfm_bristle(
         Reference position of the handle body [mm]; its frame is parallel to the head frame.
     drawn : bool
         Give the bodies graphics for Exudyn's renderer (exubrush view).
+    rotation : str
+        Rotation coordinates of the nodes (:data:`exubrush.models.assembly.NODE_TYPES`).
     """
     if segments < 1:
         raise ValueError(f"a DFM bristle needs at least one segment, got {segments}")
@@ -65,7 +68,8 @@ def add_dfm_bristle(
             drawing = piece_graphics(bristle, -0.5 * L, 0.5 * L if i < segments else 0.0,
                                      tip=i == segments)
         node, body = add_body(
-            mbs, np.add(handle_position, bristle.point(i * L)), bristle.frame, inertia, drawing
+            mbs, np.add(handle_position, bristle.point(i * L)), bristle.frame, inertia, drawing,
+            rotation,
         )
         items.nodes.append(node)
         items.bodies.append(body)

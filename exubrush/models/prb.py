@@ -36,6 +36,7 @@ def add_prb_bristle(
     stiffness_coefficient: float,
     handle_position=(0.0, 0.0, 0.0),
     drawn: bool = False,
+    rotation: str = "euler-parameters",
 ) -> BristleItems:
     """Add a PRB bristle clamped to ``handle_body``.
 
@@ -48,6 +49,9 @@ def add_prb_bristle(
     drawn : bool
         Give the link graphics for Exudyn's renderer (the stub is drawn with the handle:
         :func:`stub_graphics`).
+    rotation : str
+        Rotation coordinates of the link's node
+        (:data:`exubrush.models.assembly.NODE_TYPES`).
     """
     link = gamma * bristle.length
     k = prb_torsional_stiffness(
@@ -60,7 +64,7 @@ def add_prb_bristle(
     inertia = inertia + tip_sphere_inertia(bristle, material.density)
     tip = np.add(handle_position, bristle.point(bristle.length))
     drawing = piece_graphics(bristle, -link, 0.0, tip=True) if drawn else None
-    node, body = add_body(mbs, tip, bristle.frame, inertia, drawing)
+    node, body = add_body(mbs, tip, bristle.frame, inertia, drawing, rotation)
     pivot_on_handle = rigid_marker(mbs, handle_body, bristle.point(bristle.length - link),
                                    bristle.frame)
     pivot_on_link = rigid_marker(mbs, body, [-link, 0.0, 0.0])

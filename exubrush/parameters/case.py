@@ -110,6 +110,12 @@ class Model:
 
     kind: str = param("dfm", "bristle model", "text", choices=("dfm", "prb"))
     segments: int = param(6, "DFM: rigid bodies per bristle", above=0)
+    rotation: str = param(
+        "euler-parameters",
+        "rotation coordinates of the bristle bodies: euler-parameters (4 per node and a "
+        "constraint) or rotation-vector (Exudyn's Lie-group node, 3 per node)",
+        "text", choices=("euler-parameters", "rotation-vector"),
+    )
     prb_parameters: str = param(
         "howell-table",
         "PRB: 'howell-table' interpolates gamma, K_theta in Howell's table at n; 'fitted' "
@@ -177,6 +183,19 @@ class Solver:
     absolute_tolerance: float = param(1e-10, "Newton absolute tolerance (residual)", above=0.0)
     modified_newton: str = param("yes", "reuse the Jacobian between steps", "text",
                                  choices=("yes", "no"))
+    # at most 8 of them are modified-Newton iterations before the Jacobian is refreshed;
+    # with 8 in all, one-bristle solves failed at a reversal (10 and 12 passed)
+    newton_iterations: int = param(
+        12, "Newton iterations before a step is cut (Exudyn's newton.maxIterations; its "
+        "default 25 spent a third of a DFM solve on hopeless iterations at reversals)",
+        minimum=10,
+    )
+    linear_solver: str = param(
+        "auto",
+        "Exudyn linear solver: auto = EigenDense per bristle (20 % faster than EXUdense) and "
+        "EigenSparse for a coupled head",
+        "text", choices=("auto", "EigenDense", "EXUdense", "EigenSparse"),
+    )
     step_recovery_steps: int = param(
         2, "successful steps after a step reduction before the step may grow again "
         "(Exudyn's adaptiveStepRecoverySteps; its default 10 made PRB stick-slip 4-8x slower)",

@@ -65,6 +65,9 @@ VARIANTS = {
        for n, h in ((4, 5), (6, 2), (6, 5), (6, 10), (8, 5), (12, 5))},
     "PRB, step 5 ms, rtol 1e-6": ["model.kind='prb'", "solver.step_size='5 ms'", *LOOSE],
     "DFM N=6, Python user functions": [*DFM6, "solver.user_functions='python'"],
+    "DFM N=6, EXUdense": [*DFM6, "solver.linear_solver='EXUdense'"],
+    "DFM N=6, 25 Newton iterations": [*DFM6, "solver.newton_iterations=25"],
+    "DFM N=6, rotation vector": [*DFM6, "model.rotation='rotation-vector'"],
     "DFM N=6, mass x100": [*DFM6, "head.material.density='1.1e5 kg/m^3'"],
     "DFM N=6, one process": DFM6,
     "DFM N=12, step 2 ms, rtol 1e-6": ["model.kind='dfm'", "model.segments=12",
@@ -73,6 +76,10 @@ VARIANTS = {
        for name, preset in PRESETS.items()},
     **{f"PRB, preset {name}": [*preset.overrides, "model.kind='prb'"]
        for name, preset in PRESETS.items()},
+    # the fast preset with the linear solver and Newton limit of before (Exudyn's defaults)
+    "preset fast, EXUdense, 25 Newton iterations": [
+        "model.kind='dfm'", *PRESETS["fast"].overrides, "solver.linear_solver='EXUdense'",
+        "solver.newton_iterations=25"],
 }
 SINGLE_PROCESS = {"DFM N=6, one process"}
 
