@@ -28,11 +28,14 @@ def test_prb_drawing_puts_the_pivot_on_the_stub(two_model_runs):
     stub = np.linalg.norm(shapes.lines[:, :, 1] - shapes.lines[:, :, 0], axis=-1)
     link = np.linalg.norm(shapes.lines[:, :, 2] - shapes.lines[:, :, 1], axis=-1)
     # stub (1 - γ) l fixed to the handle and a rigid link γ l (l = 5 mm, default bristle);
-    # 1e-4 mm: the joint keeps the length to the solver tolerance, but shapes are linearly
-    # interpolated onto the output grid between step ends (simulation.on_output_grid), and
-    # the chord of the tip's arc over one step of at most 2 ms is up to ~6e-5 mm shorter
+    # 3e-4 mm (7e-5 of the link; a misplaced pivot would be off by millimetres): the joint
+    # holds the length only to the Newton tolerance (rtol 1e-6 on a residual that mixes
+    # forces and the joint's position error), seen 1.2e-4 mm long at one sample; and shapes
+    # are linearly interpolated onto the output grid between step ends
+    # (simulation.on_output_grid), where the chord of the tip's arc over one step of at
+    # most 2 ms is up to ~6e-5 mm shorter
     np.testing.assert_allclose(stub, (1.0 - gamma) * 5.0, rtol=1e-12)
-    np.testing.assert_allclose(link, gamma * 5.0, atol=1e-4)
+    np.testing.assert_allclose(link, gamma * 5.0, atol=3e-4)
 
 
 def test_frames_refuse_times_outside_the_run(two_model_runs, cli, tmp_path):
