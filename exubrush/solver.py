@@ -62,9 +62,8 @@ def linear_solver(solver: Solver) -> str:
     Jacobian, so EigenSparse; one bristle has a few dozen, so a dense LU. EigenDense (partial
     pivoting) solved five DFM bristles 20 % faster than EXUdense, with 0.4 % more steps and
     mean forces within 0.01 %; like EXUdense, it lets Exudyn cut the step where the Jacobian
-    turns singular (a PRB link
-    swinging round at a reversal, where the Stribeck friction's negative slope cancels the
-    inertia); EigenSparse stops the run there.
+    turns singular (a PRB link swinging round at a reversal, where the Stribeck friction's
+    negative slope cancels the inertia); EigenSparse stops the run there.
     """
     if solver.linear_solver != "auto":
         return solver.linear_solver
