@@ -16,11 +16,18 @@ import exudyn.itemInterface as eii
 import numpy as np
 from exudyn.rigidBodyUtilities import InertiaCuboid
 
-from exubrush.contact.exudyn_contact import add_tip_contact, contact_user_function
+from exubrush.contact.exudyn_contact import (
+    add_builtin_tip_contact,
+    add_tip_contact,
+    builtin_friction_blend,
+    contact_user_function,
+)
+from exubrush.contact.laws import builtin_contact_parameters
 from exubrush.models.dfm import add_dfm_bristle
 from exubrush.models.geometry import BristleGeometry, can_reach, head_bristles
 from exubrush.models.howell import howell_parameters
 from exubrush.models.prb import add_prb_bristle, stub_graphics
+from exubrush.models.stiffness import buckling_load
 from exubrush.motion import HeadMotion, head_motion
 from exubrush.parameters.case import Case
 from exubrush.reference.howell_fit import fit_prb_parameters
@@ -80,6 +87,8 @@ class Scene:
     node_sensors: list = field(default_factory=list)
     contacts: list = field(default_factory=list)
     keep_alive: list = field(default_factory=list)
+    # callables (mbs, t) that the solve must call before every step
+    step_hooks: list = field(default_factory=list)
 
 
 def _add_drive(scene: Scene, handle_node) -> None:
@@ -126,6 +135,26 @@ def _drawings(case: Case, bristles: list[BristleGeometry], gamma: float | None):
     return surface, handle
 
 
+def _add_contact(scene: Scene, case: Case, plane, tip_body, bristle: BristleGeometry,
+                 laws: dict, window):
+    """The tip's contact with the plane: the paper's law as a user function (one per tip
+    radius, cached in ``laws``), or Exudyn's built-in contact with the nearest parameters."""
+    backend = case.solver.user_functions
+    if backend == "builtin":
+        parameters = builtin_contact_parameters(
+            case.contact,
+            buckling_load(bristle.section, case.head.material.youngs_modulus, bristle.length),
+        )
+        if window is not None:
+            parameters["dynamicFriction"] = 0.0  # blended in by a step hook
+        return add_builtin_tip_contact(scene.mbs, plane, tip_body, bristle.tip_radius,
+                                       parameters)
+    if bristle.tip_radius not in laws:
+        laws[bristle.tip_radius] = contact_user_function(
+            scene.mbs, case.contact, bristle.tip_radius, backend, window)
+    return add_tip_contact(scene.mbs, plane, tip_body, laws[bristle.tip_radius])
+
+
 def build_scene(case: Case, selection: list[int] | None = None, drawn: bool = False) -> Scene:
     """Assemble ``case`` into a ready-to-solve Exudyn system.
 
@@ -158,6 +187,7 @@ def build_scene(case: Case, selection: list[int] | None = None, drawn: bool = Fa
     _add_drive(scene, handle["nodeNumber"])
     plane = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=ground, localPosition=[0, 0, 0]))
     laws = {}
+    window = friction_window(case, motion)
     origin = (0.0, 0.0, start_height)
     material = case.head.material
     for bristle in bristles:
@@ -173,13 +203,11 @@ def build_scene(case: Case, selection: list[int] | None = None, drawn: bool = Fa
             for n in items.nodes
         ])
         if can_reach(bristle, case.motion.interaction_distance):
-            if bristle.tip_radius not in laws:
-                laws[bristle.tip_radius] = contact_user_function(
-                    mbs, case.contact, bristle.tip_radius, case.solver.user_functions,
-                    friction_window(case, motion),
-                )
-            scene.contacts.append(add_tip_contact(mbs, plane, items.tip_body,
-                                                  laws[bristle.tip_radius]))
+            scene.contacts.append(_add_contact(scene, case, plane, items.tip_body, bristle,
+                                               laws, window))
     scene.keep_alive.extend(laws.values())
+    if case.solver.user_functions == "builtin" and window is not None and scene.contacts:
+        scene.step_hooks.append(
+            builtin_friction_blend(scene.contacts, case.contact.dynamic_friction, window))
     mbs.Assemble()
     return scene

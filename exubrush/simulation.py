@@ -107,6 +107,8 @@ def solve_group(
     status = {"reason": ""}
 
     def report(mbs, t):
+        for hook in scene.step_hooks:
+            hook(mbs, t)
         if t - reported[0] >= PROGRESS_STEP:
             if parent_pid is not None and os.getppid() != parent_pid:
                 os._exit(1)  # orphaned: nobody will read the result

@@ -8,6 +8,10 @@ centre and the returned torque to the tip body, both with a minus sign (a spring
 restoring convention, checked in tests/integration/test_contact_connector.py). The law is
 :func:`exubrush.contact.laws.sphere_plane_force`, recorded as an Exudyn symbolic (C++) user
 function by default, or called as plain Python.
+
+The approximate fast path ("builtin") uses Exudyn's own ``ObjectContactSphereTriangle``
+against one triangle covering the plane, with the law's nearest parameters
+(:func:`exubrush.contact.laws.builtin_contact_parameters`).
 """
 
 from __future__ import annotations
@@ -17,6 +21,10 @@ import exudyn.itemInterface as eii
 from exudyn.advancedUtilities import CreateSymbolicUserFunction
 
 from exubrush.contact.laws import FLOAT_MATH, ContactLaw, cubic_step, sphere_plane_force
+
+# half the side of the square of the plane z = 0 that the built-in contact's triangle
+# covers [mm]: far beyond any head and stroke
+BUILTIN_PLANE_HALF_SIZE = 1e4
 
 CONNECTOR_TYPE = "ObjectConnectorRigidBodySpringDamper"
 USER_FUNCTION_NAME = "springForceTorqueUserFunction"
@@ -67,3 +75,47 @@ def add_tip_contact(mbs, plane_marker, tip_body, user_function):
             visualization=eii.VObjectConnectorRigidBodySpringDamper(show=False),
         )
     )
+
+
+def add_builtin_tip_contact(mbs, plane_marker, tip_body, radius: float, parameters: dict):
+    """Exudyn's built-in sphere-triangle contact between the tip sphere and the plane z = 0.
+
+    ``parameters``: keyword arguments of ``ObjectContactSphereTriangle`` (stiffness, damping,
+    friction; from :func:`exubrush.contact.laws.builtin_contact_parameters`). The triangle,
+    counter-clockwise seen from +z (normal +z), covers the square |x|, |y| <= 1e4 mm; its
+    edges are never reached, so edge contact is off. The contact's state (gap, slip) lives
+    in a data node that Exudyn updates between Newton solves; it starts "apart".
+    """
+    tip_marker = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=tip_body, localPosition=[0, 0, 0]))
+    state = mbs.AddNode(eii.NodeGenericData(numberOfDataCoordinates=4,
+                                            initialCoordinates=[1.0, 0.0, 0.0, 0.0]))
+    size = BUILTIN_PLANE_HALF_SIZE
+    return mbs.AddObject(
+        eii.ObjectContactSphereTriangle(
+            markerNumbers=[tip_marker, plane_marker],
+            nodeNumber=state,
+            sphereRadius=radius,
+            trianglePoints=exu.Vector3DList([[-size, -size, 0.0], [3 * size, -size, 0.0],
+                                             [-size, 3 * size, 0.0]]),
+            includeEdges=0,
+            **parameters,
+            visualization=eii.VObjectContactSphereTriangle(show=False),
+        )
+    )
+
+
+def builtin_friction_blend(contacts: list, friction: float, window: tuple[float, float]):
+    """A per-step hook ``(mbs, t)`` that blends the built-in contacts' μ from 0 to ``friction``
+    over ``window`` [s] (the cubic step of the user-function law's friction window)."""
+
+    blended = [False]
+
+    def set_friction(mbs, t):
+        if blended[0]:
+            return
+        scale = cubic_step(t, window[0], 0.0, window[1], 1.0)
+        for contact in contacts:
+            mbs.SetObjectParameter(contact, "dynamicFriction", friction * scale)
+        blended[0] = scale >= 1.0
+
+    return set_friction

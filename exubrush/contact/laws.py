@@ -140,3 +140,31 @@ def sphere_plane_force(
     force_tx = scale * slip_x
     force_ty = scale * slip_y
     return [force_tx, force_ty, force_n, radius * force_ty, -radius * force_tx, 0.0]
+
+
+def builtin_contact_parameters(law: ContactLaw, reference_force: float) -> dict:
+    """Parameters of Exudyn's built-in sphere-triangle contact closest to ``law`` (mm-N-s).
+
+    Exudyn's ``ObjectContactSphereTriangle`` has the same elastic term k δ^m1, but a linear
+    damping d δ' and a single friction coefficient μ, linear in the slip speed up to a
+    regularisation speed v_r and constant above. The fit, an approximation:
+
+    - d = c δ_ref^m3 (1 mm/s)^(m2-1): the paper's damping at the indentation δ_ref where
+      the elastic force equals ``reference_force`` [N] (k δ_ref^m1 = F_ref);
+    - μ = μ_d, the coefficient of steady sliding;
+    - v_r = μ_d v_s / (1.5 μ_s): the same slope dμ/dv at zero slip as the paper's law
+      (1.5 μ_s / v_s), so a sticking tip sees the same tangential stiffness. What is lost:
+      the static peak μ_s between v_r and v_d.
+    """
+    reference_depth = (reference_force / law.stiffness) ** (1.0 / law.stiffness_exponent)
+    if law.static_friction > 0.0 and law.dynamic_friction > 0.0:
+        regularisation = law.dynamic_friction * law.static_velocity / (1.5 * law.static_friction)
+    else:
+        regularisation = law.static_velocity
+    return {
+        "contactStiffness": law.stiffness,
+        "contactStiffnessExponent": law.stiffness_exponent,
+        "contactDamping": law.damping * reference_depth**law.damping_depth_exponent,
+        "dynamicFriction": law.dynamic_friction,
+        "frictionProportionalZone": regularisation,
+    }

@@ -120,3 +120,13 @@ def prb_torsional_stiffness(
             gamma * stiffness_coefficient * E * section.second_moment_z / length_,
         ]
     )
+
+
+def buckling_load(section: SectionProperties, youngs_modulus: float, length: float) -> float:
+    """Euler buckling load of a clamped-free column, π²·E·I_min / (4·l²) [N].
+
+    The largest axial load a straight bristle carries before it bows out; beyond it the
+    tip force barely grows, which makes it the tip's representative contact force.
+    """
+    second_moment = min(section.second_moment_y, section.second_moment_z)
+    return float(np.pi**2 * youngs_modulus * second_moment / (4.0 * length**2))

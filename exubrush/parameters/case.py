@@ -209,8 +209,11 @@ class Solver:
         "text", choices=("per-bristle", "coupled"),
     )
     user_functions: str = param(
-        "symbolic", "contact law back end: symbolic (C++) or python", "text",
-        choices=("symbolic", "python"),
+        "symbolic",
+        "contact back end: the paper's law as a symbolic (C++) or python user function, or "
+        "builtin = Exudyn's own sphere-triangle contact with the nearest parameters (one "
+        "friction coefficient, linear damping; an approximation, see README Performance)",
+        "text", choices=("symbolic", "python", "builtin"),
     )
 
     def check(self) -> None:

@@ -47,6 +47,19 @@ def test_runs_are_repeatable(smoke_run):
     np.testing.assert_array_equal(again.normal_force, smoke_run.normal_force)
 
 
+def test_builtin_contact_blends_friction_in_for_prb_then_slides_at_mu_d():
+    # PRB blends friction in after the approach (motion.approach_friction = auto); with
+    # Exudyn's built-in contact a step hook does it (tested on its own in
+    # test_contact_connector.py). Without the hook μ would stay 0; steady sliding is at μ_d
+    results = simulate(load_case("orthogonal", [*SMALL_HEAD, "model.kind='prb'",
+                                                "solver.user_functions='builtin'"]),
+                       progress=False, workers=1)
+    assert results.metadata["completed"], results.metadata["message"]
+    late = results.time > results.time[-1] - 0.3
+    # 1e-3: the drive reaction's round-off and the last bit of bending still building up
+    np.testing.assert_allclose(results.friction_coefficient[late], 0.76, atol=1e-3)
+
+
 @pytest.mark.parametrize("script", ["orthogonal", "parallel"])
 def test_case_scripts_run_in_smoke_mode(script):
     import importlib.util

@@ -1,13 +1,19 @@
-"""The contact law inside Exudyn: back ends agree and the sign convention holds."""
+"""The contact law inside Exudyn: back ends agree and the sign convention holds; Exudyn's
+built-in contact with the fitted parameters is the law where the fit says it is."""
 
 import exudyn as exu
 import exudyn.itemInterface as eii
 import numpy as np
 import pytest
-from exudyn.rigidBodyUtilities import InertiaSphere
+from exudyn.rigidBodyUtilities import InertiaSphere, RigidBodyInertia
 
-from exubrush.contact.exudyn_contact import add_tip_contact, contact_user_function
-from exubrush.contact.laws import ContactLaw, sphere_plane_force
+from exubrush.contact.exudyn_contact import (
+    add_builtin_tip_contact,
+    add_tip_contact,
+    builtin_friction_blend,
+    contact_user_function,
+)
+from exubrush.contact.laws import ContactLaw, builtin_contact_parameters, sphere_plane_force
 
 LAW = ContactLaw()
 RADIUS = 0.4
@@ -78,3 +84,74 @@ def test_friction_window_blends_friction_in():
     before, during, after = (function(None, t, 0, **state) for t in (0.5, 1.1, 2.0))
     assert before[0] == 0.0 and before[2] == after[2] != 0.0
     assert after[0] > during[0] > 0.0  # connector load is minus the friction force (+x)
+
+
+def _builtin_load(centre, velocity, omega):
+    """Force and moment [N, N·mm] of the built-in contact on a free sphere of mass 1 t and
+    inertia 1 t·mm², read as its accelerations after one 1 ns step (the state barely moves;
+    the contact's gap and slip state are settled by Exudyn's discontinuous iteration)."""
+    SC = exu.SystemContainer()
+    mbs = SC.AddSystem()
+    ground = mbs.AddObject(eii.ObjectGround())
+    body = mbs.CreateRigidBody(referencePosition=centre, initialVelocity=velocity,
+                               initialAngularVelocity=omega,
+                               inertia=RigidBodyInertia(1.0, np.eye(3)),
+                               gravity=[0, 0, 0], show=False, returnDict=True)
+    plane = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=ground, localPosition=[0, 0, 0]))
+    add_builtin_tip_contact(mbs, plane, body["bodyNumber"], RADIUS,
+                            builtin_contact_parameters(LAW, reference_force=0.05))
+    mbs.Assemble()
+    settings = exu.SimulationSettings()
+    settings.timeIntegration.verboseMode = 0
+    settings.solution.file.write = False
+    settings.timeIntegration.endTime = 1e-9
+    settings.timeIntegration.numberOfSteps = 1
+    mbs.SolveDynamic(settings)
+    node = body["nodeNumber"]
+    return np.concatenate([
+        mbs.GetNodeOutput(node, exu.OutputVariableType.Acceleration),
+        mbs.GetNodeOutput(node, exu.OutputVariableType.AngularAcceleration),
+    ])
+
+
+def test_builtin_contact_normal_force_is_the_laws_elastic_force():
+    load = _builtin_load([0.0, 0.0, 0.39], [0.0, 0.0, 0.0], [0.0, 0.0, 0.0])
+    expected = sphere_plane_force(LAW, RADIUS, [0, 0, 0.39], [0, 0, 0], [0, 0, 0])
+    # at rest no damping: the same k δ^m1, to the solver's 1 ns of motion
+    np.testing.assert_allclose(load, expected, rtol=1e-6, atol=1e-12)
+
+
+def test_builtin_contact_friction_in_full_slip_is_the_dynamic_coefficient():
+    load = _builtin_load([0.0, 0.0, 0.39], [5.0, 0.0, 0.0], [0.0, 0.0, 0.0])
+    law = sphere_plane_force(LAW, RADIUS, [0, 0, 0.39], [5.0, 0, 0], [0, 0, 0])
+    assert load[2] == pytest.approx(law[2], rel=1e-6)
+    assert load[0] == pytest.approx(-LAW.dynamic_friction * law[2], rel=1e-6)
+    # Exudyn's friction moment arm is the centre's height above the plane (0.39 mm), the
+    # law's is the radius (0.4 mm): 2.5 % apart, within the approximation
+    assert load[4] == pytest.approx(law[4], rel=0.03)
+
+
+def test_builtin_contact_friction_at_small_slip_follows_the_laws_slope():
+    # slip 0.3 mm/s, a quarter of v_s: both are ~linear in the slip with the same slope at
+    # zero; the law's cubic step has bent 2 % below its tangent there
+    load = _builtin_load([0.0, 0.0, 0.39], [0.3, 0.0, 0.0], [0.0, 0.0, 0.0])
+    law = sphere_plane_force(LAW, RADIUS, [0, 0, 0.39], [0.3, 0, 0], [0, 0, 0])
+    assert load[0] == pytest.approx(law[0], rel=0.03)
+
+
+def test_builtin_friction_blend_raises_the_coefficient_over_the_window():
+    SC = exu.SystemContainer()
+    mbs = SC.AddSystem()
+    ground = mbs.AddObject(eii.ObjectGround())
+    body = mbs.CreateRigidBody(referencePosition=[0, 0, 1.0], inertia=InertiaSphere(1e-9, RADIUS),
+                               gravity=[0, 0, 0], show=False, returnDict=True)
+    plane = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=ground, localPosition=[0, 0, 0]))
+    contact = add_builtin_tip_contact(mbs, plane, body["bodyNumber"], RADIUS,
+                                      {"dynamicFriction": 0.0, "contactStiffness": 1.0})
+    blend = builtin_friction_blend([contact], 0.76, (1.0, 1.2))
+    seen = []
+    for t in (0.5, 1.1, 1.2, 0.5):  # once at full friction, the hook leaves μ alone
+        blend(mbs, t)
+        seen.append(mbs.GetObjectParameter(contact, "dynamicFriction"))
+    assert seen[0] == 0.0 and 0.0 < seen[1] < 0.76
+    assert seen[2] == pytest.approx(0.76) and seen[3] == seen[2]

@@ -7,6 +7,7 @@ import pytest
 
 from exubrush.contact.laws import (
     ContactLaw,
+    builtin_contact_parameters,
     friction_coefficient,
     normal_force,
     sphere_plane_force,
@@ -113,3 +114,24 @@ def test_friction_scale_switches_only_the_tangential_force():
     assert none[2] == full[2] and none[0] == none[1] == 0.0
     assert half[0] == pytest.approx(0.5 * full[0], rel=1e-14)
     assert half[4] == pytest.approx(0.5 * full[4], rel=1e-14)
+
+
+def test_builtin_contact_parameters_match_the_law_where_they_can():
+    fitted = builtin_contact_parameters(LAW, reference_force=0.05)
+    assert fitted["contactStiffness"] == LAW.stiffness
+    assert fitted["contactStiffnessExponent"] == LAW.stiffness_exponent
+    assert fitted["dynamicFriction"] == LAW.dynamic_friction
+    # same slope of μ at zero slip: μ_d / v_r = 1.5 μ_s / v_s = 1 s/mm
+    slope = fitted["dynamicFriction"] / fitted["frictionProportionalZone"]
+    assert slope == pytest.approx(friction_coefficient(LAW, 1e-7) / 1e-7, rel=1e-6)
+    # linear damping = the law's damping term at the depth where k δ^m1 = 0.05 N, 1 mm/s
+    depth = (0.05 / 100.0) ** (1 / 1.3)
+    damping_term = normal_force(LAW, depth, 1.0) - normal_force(LAW, depth, 0.0)
+    assert fitted["contactDamping"] * 1.0 == pytest.approx(damping_term, rel=1e-9)
+
+
+def test_builtin_contact_without_friction_keeps_a_valid_regularisation():
+    fitted = builtin_contact_parameters(ContactLaw(static_friction=0.0, dynamic_friction=0.0),
+                                        reference_force=0.05)
+    assert fitted["dynamicFriction"] == 0.0
+    assert fitted["frictionProportionalZone"] > 0.0

@@ -5,6 +5,7 @@ import pytest
 
 from exubrush.models.sections import section_properties
 from exubrush.models.stiffness import (
+    buckling_load,
     lever_transform,
     midpoint_stiffness,
     prb_torsional_stiffness,
@@ -78,3 +79,9 @@ def test_prb_springs():
     assert k[0] == pytest.approx(G * SECTION.torsion_constant / (gamma * length), rel=1e-14)
     assert k[1] == pytest.approx(gamma * k_theta * E * SECTION.second_moment_y / length, rel=1e-14)
     assert k[2] == pytest.approx(gamma * k_theta * E * SECTION.second_moment_z / length, rel=1e-14)
+
+
+def test_buckling_load_is_eulers_clamped_free_column_about_the_weak_axis():
+    # π² E I_min / (4 L²) with I_min = 0.9 · 0.6³ / 12 (bending across the 0.6 mm side)
+    expected = np.pi**2 * E * (0.9 * 0.6**3 / 12) / (4 * L**2)
+    assert buckling_load(SECTION, E, L) == pytest.approx(expected, rel=1e-12)
