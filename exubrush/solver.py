@@ -51,7 +51,7 @@ def dynamic_settings(solver: Solver, end_time: float, output_interval: float):
     settings.linearSolver.solverType = getattr(exu.LinearSolverType, linear_solver(solver))
     # a coupled head's sparsity pattern never changes between steps
     settings.linearSolver.reuseAnalyzedPattern = True
-    settings.parallel.numberOfThreads = 1
+    settings.parallel.numberOfThreads = solver.threads
     return settings
 
 

@@ -215,13 +215,29 @@ class Solver:
         "friction coefficient, linear damping; an approximation, see README Performance)",
         "text", choices=("symbolic", "python", "builtin"),
     )
+    threads: int = param(
+        1, "Exudyn threads for a coupled head (parallel.numberOfThreads); needs the builtin "
+        "contact: with user-function contacts, threads broke Newton or hung", minimum=1,
+    )
 
     def check(self) -> None:
-        """Spectral radius within [0, 1]; minimum step below the step."""
+        """Spectral radius within [0, 1]; minimum step below the step; threads only for a
+        coupled head with the builtin contact."""
         if self.spectral_radius > 1.0:
             raise ValueError(f"spectral_radius {self.spectral_radius:g} must be <= 1")
         if self.minimum_step_size > self.step_size:
             raise ValueError("minimum_step_size must not exceed step_size")
+        if self.threads > 1 and self.partition != "coupled":
+            raise ValueError(
+                f"threads = {self.threads} needs partition 'coupled': per-bristle already "
+                "solves one bristle per process on every core"
+            )
+        if self.threads > 1 and self.user_functions != "builtin":
+            raise ValueError(
+                f"threads = {self.threads} needs user_functions 'builtin': with the "
+                f"{self.user_functions} contact law Exudyn's threads broke Newton or hung "
+                "(README, Performance); use threads = 1 or the builtin contact"
+            )
 
 
 @dataclass(frozen=True)

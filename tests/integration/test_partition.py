@@ -23,3 +23,16 @@ def test_per_bristle_and_coupled_solves_agree_in_steady_sliding():
                                atol=2e-3 * scale)
     np.testing.assert_allclose(split.tangential_force[late], coupled.tangential_force[late],
                                atol=2e-3 * scale)
+
+
+def test_two_threads_solve_a_coupled_head_with_builtin_contact_as_one_does():
+    overrides = ["head.rows=2", "head.columns=2", "motion.periods=0.12",
+                 "solver.partition='coupled'", "solver.user_functions='builtin'"]
+    one = simulate(load_case("orthogonal", overrides), progress=False)
+    two = simulate(load_case("orthogonal", [*overrides, "solver.threads=2"]), progress=False)
+    assert two.metadata["status"] == "completed", two.metadata["message"]
+    # same steps; threads only change the order of summation in the residual: round-off
+    # amplified by Newton's tolerance, far below 1e-4 of the force
+    scale = np.abs(one.normal_force).max()
+    np.testing.assert_allclose(two.normal_force, one.normal_force, atol=1e-4 * scale)
+    np.testing.assert_allclose(two.tangential_force, one.tangential_force, atol=1e-4 * scale)

@@ -36,6 +36,10 @@ MALFORMED = [
     ("set", ["head.root_tilt='100 deg'"], "head.root_tilt: 100 deg must be < 30 deg"),
     ("set", ["solver.spectral_radius=1.5"], "spectral_radius 1.5 must be <= 1"),
     ("set", ["solver.minimum_step_size='1 s'"], "minimum_step_size must not exceed step_size"),
+    ("set", ["solver.threads=0"], "solver.threads: 0 must be >= 1"),
+    ("set", ["solver.threads=2"], "threads = 2 needs partition 'coupled'"),
+    ("set", ["solver.threads=2", "solver.partition='coupled'"],
+     "threads = 2 needs user_functions 'builtin'"),
     # units
     ("set", ["head.bristle.length=5"], "head.bristle.length: 5 has no unit"),
     ("set", ["contact.damping='0.2'"], "contact.damping: '0.2' has no unit"),

@@ -54,6 +54,7 @@ REFERENCE = ["model.kind='dfm'", "model.segments=24", "solver.step_size='0.25 ms
 BASELINE = ["solver.step_size='1 ms'", "solver.relative_tolerance=1e-8"]
 DFM6 = ["model.kind='dfm'", "model.segments=6"]
 LOOSE = ["solver.relative_tolerance=1e-6"]
+BUILTIN = "solver.user_functions='builtin'"
 VARIANTS = {
     "PRB": ["model.kind='prb'"],
     **{f"DFM N={n}": ["model.kind='dfm'", f"model.segments={n}"] for n in (2, 3, 4, 6, 8, 12)},
@@ -76,6 +77,16 @@ VARIANTS = {
        for name, preset in PRESETS.items()},
     **{f"PRB, preset {name}": [*preset.overrides, "model.kind='prb'"]
        for name, preset in PRESETS.items()},
+    # Exudyn's built-in sphere-triangle contact instead of the paper's law (an approximation:
+    # one μ, linear damping), per bristle and as one coupled system on 1 and 2 threads
+    "DFM N=6, built-in contact": [*DFM6, BUILTIN],
+    **{f"preset {name}, built-in contact": ["model.kind='dfm'", *PRESETS[name].overrides,
+                                            BUILTIN] for name in ("fast", "balanced")},
+    "PRB, preset fast, built-in contact": [*PRESETS["fast"].overrides, "model.kind='prb'",
+                                           BUILTIN],
+    **{f"preset fast, built-in contact, coupled, {n} thread{'s' * (n > 1)}": [
+        "model.kind='dfm'", *PRESETS["fast"].overrides, BUILTIN, "solver.partition='coupled'",
+        f"solver.threads={n}"] for n in (1, 2)},
     # the fast preset with the linear solver and Newton limit of before (Exudyn's defaults)
     "preset fast, EXUdense, 25 Newton iterations": [
         "model.kind='dfm'", *PRESETS["fast"].overrides, "solver.linear_solver='EXUdense'",
