@@ -25,14 +25,33 @@ STATES = [  # centre [mm], velocity [mm/s], angular velocity [rad/s]
 ]
 
 
-def _connector_load(backend, centre, velocity, omega):
+def _sphere_above_plane(centre, velocity=None, omega=None, inertia=None):
+    """A free rigid sphere and a marker on the plane z = 0: (system container, system,
+    the body's item dict, plane marker); keep the container alive while the system runs.
+    At rest and a 1e-9 t tip sphere unless told otherwise."""
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
     ground = mbs.AddObject(eii.ObjectGround())
-    body = mbs.CreateRigidBody(referencePosition=centre, initialVelocity=velocity,
-                               initialAngularVelocity=omega, inertia=InertiaSphere(1e-9, RADIUS),
+    body = mbs.CreateRigidBody(referencePosition=centre, initialVelocity=velocity or [0, 0, 0],
+                               initialAngularVelocity=omega or [0, 0, 0],
+                               inertia=inertia or InertiaSphere(1e-9, RADIUS),
                                gravity=[0, 0, 0], show=False, returnDict=True)
     plane = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=ground, localPosition=[0, 0, 0]))
+    return SC, mbs, body, plane
+
+
+def _solve(mbs, end_time, steps):
+    mbs.Assemble()
+    settings = exu.SimulationSettings()
+    settings.timeIntegration.verboseMode = 0
+    settings.solution.file.write = False
+    settings.timeIntegration.endTime = end_time
+    settings.timeIntegration.numberOfSteps = steps
+    mbs.SolveDynamic(settings)
+
+
+def _connector_load(backend, centre, velocity, omega):
+    SC, mbs, body, plane = _sphere_above_plane(centre, velocity, omega)
     function = contact_user_function(mbs, LAW, RADIUS, backend)
     connector = add_tip_contact(mbs, plane, body["bodyNumber"], function)
     mbs.Assemble()
@@ -59,20 +78,9 @@ def test_connector_load_is_minus_the_law(state):
 
 
 def test_penetrating_sphere_is_pushed_up():
-    SC = exu.SystemContainer()
-    mbs = SC.AddSystem()
-    ground = mbs.AddObject(eii.ObjectGround())
-    body = mbs.CreateRigidBody(referencePosition=[0, 0, 0.39], inertia=InertiaSphere(1e-9, RADIUS),
-                               gravity=[0, 0, 0], show=False, returnDict=True)
-    plane = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=ground, localPosition=[0, 0, 0]))
+    SC, mbs, body, plane = _sphere_above_plane([0, 0, 0.39])
     add_tip_contact(mbs, plane, body["bodyNumber"], contact_user_function(mbs, LAW, RADIUS))
-    mbs.Assemble()
-    settings = exu.SimulationSettings()
-    settings.timeIntegration.verboseMode = 0
-    settings.solution.file.write = False
-    settings.timeIntegration.endTime = 1e-4
-    settings.timeIntegration.numberOfSteps = 10
-    mbs.SolveDynamic(settings)
+    _solve(mbs, end_time=1e-4, steps=10)
     velocity = mbs.GetNodeOutput(body["nodeNumber"], exu.OutputVariableType.Velocity)
     assert velocity[2] > 0
 
@@ -90,23 +98,11 @@ def _builtin_load(centre, velocity, omega):
     """Force and moment [N, N·mm] of the built-in contact on a free sphere of mass 1 t and
     inertia 1 t·mm², read as its accelerations after one 1 ns step (the state barely moves;
     the contact's gap and slip state are settled by Exudyn's discontinuous iteration)."""
-    SC = exu.SystemContainer()
-    mbs = SC.AddSystem()
-    ground = mbs.AddObject(eii.ObjectGround())
-    body = mbs.CreateRigidBody(referencePosition=centre, initialVelocity=velocity,
-                               initialAngularVelocity=omega,
-                               inertia=RigidBodyInertia(1.0, np.eye(3)),
-                               gravity=[0, 0, 0], show=False, returnDict=True)
-    plane = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=ground, localPosition=[0, 0, 0]))
+    SC, mbs, body, plane = _sphere_above_plane(centre, velocity, omega,
+                                               RigidBodyInertia(1.0, np.eye(3)))
     add_builtin_tip_contact(mbs, plane, body["bodyNumber"], RADIUS,
                             builtin_contact_parameters(LAW, reference_force=0.05))
-    mbs.Assemble()
-    settings = exu.SimulationSettings()
-    settings.timeIntegration.verboseMode = 0
-    settings.solution.file.write = False
-    settings.timeIntegration.endTime = 1e-9
-    settings.timeIntegration.numberOfSteps = 1
-    mbs.SolveDynamic(settings)
+    _solve(mbs, end_time=1e-9, steps=1)
     node = body["nodeNumber"]
     return np.concatenate([
         mbs.GetNodeOutput(node, exu.OutputVariableType.Acceleration),
@@ -140,12 +136,7 @@ def test_builtin_contact_friction_at_small_slip_follows_the_laws_slope():
 
 
 def test_builtin_friction_blend_raises_the_coefficient_over_the_window():
-    SC = exu.SystemContainer()
-    mbs = SC.AddSystem()
-    ground = mbs.AddObject(eii.ObjectGround())
-    body = mbs.CreateRigidBody(referencePosition=[0, 0, 1.0], inertia=InertiaSphere(1e-9, RADIUS),
-                               gravity=[0, 0, 0], show=False, returnDict=True)
-    plane = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=ground, localPosition=[0, 0, 0]))
+    SC, mbs, body, plane = _sphere_above_plane([0, 0, 1.0])
     contact = add_builtin_tip_contact(mbs, plane, body["bodyNumber"], RADIUS,
                                       {"dynamicFriction": 0.0, "contactStiffness": 1.0})
     blend = builtin_friction_blend([contact], 0.76, (1.0, 1.2))
