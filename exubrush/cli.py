@@ -41,11 +41,10 @@ def main() -> None:
               help="Replace exubrush results already in --out (other files are never touched).")
 @click.option("--quiet", is_flag=True, help="No progress bar.")
 @click.option("--preset", type=click.Choice(list(PRESETS)),
-              help="Solver settings measured on the run-time/error front (README, "
-                   "Performance): fast, balanced (= the defaults) or accurate; --segments "
-                   "and --set override it.")
+              help="Solver settings from the measured run-time/error front: fast, balanced "
+                   "(= the defaults) or accurate; --segments and --set override it.")
 @click.option("--viewer", is_flag=True, help="Also keep every node's coordinates at the "
-              "shape interval, to open the run with 'exubrush view' (output.solution_file).")
+              "shape interval, to open the run with 'exubrush view' (output.solution_file = true).")
 def run(case, model, segments, periods, out, overrides, overwrite, quiet, preset, viewer):
     """Simulate CASE (orthogonal, parallel or a TOML case file) and save the results.
 
@@ -55,15 +54,23 @@ def run(case, model, segments, periods, out, overrides, overwrite, quiet, preset
     shortcuts = [f"model.kind={model!r}" if model else None,
                  f"model.segments={segments}" if segments is not None else None,
                  f"motion.periods={periods}" if periods is not None else None,
-                 "output.solution_file='yes'" if viewer else None]
+                 "output.solution_file=true" if viewer else None]
+    from exubrush.prepared import prepare
+
     try:
-        parameters = load_case(case, [*preset_overrides(preset), *filter(None, shortcuts),
-                                      *overrides])
+        prepared = prepare(load_case(case, [*preset_overrides(preset),
+                                            *filter(None, shortcuts), *overrides]))
     except (ParameterError, UnitError) as err:
         _fail(str(err))
-    _warn_unreachable(parameters)
+    parameters = prepared.case
+    if prepared.unreachable:
+        click.echo(f"exubrush: warning: {prepared.unreachable} of {len(prepared.bristles)} "
+                   "bristles cannot reach the surface at motion.interaction_distance = "
+                   f"{parameters.motion.interaction_distance:g} mm; they get no contact",
+                   err=True)
+    from exubrush.execution.signals import signals_redirected
     from exubrush.rundir import RunDirectory, RunDirectoryError
-    from exubrush.simulation import signals_redirected, simulate
+    from exubrush.simulation import simulate
 
     directory = Path(out or f"results/{parameters.name}-{parameters.model.kind}")
     try:
@@ -75,7 +82,7 @@ def run(case, model, segments, periods, out, overrides, overwrite, quiet, preset
                    f"{store.checkpoint}", err=True)
     # a kill (SIGTERM) stops the run like Ctrl-C: what is finished is kept and saved
     signal.signal(signal.SIGTERM, signal.default_int_handler)
-    results = simulate(parameters, progress=not quiet, directory=store)
+    results = simulate(prepared, progress=not quiet, directory=store)
     with signals_redirected(signal.SIG_IGN):  # a second of writing: finish, never half done
         results.save(directory)
     meta = results.metadata
@@ -96,18 +103,6 @@ def run(case, model, segments, periods, out, overrides, overwrite, quiet, preset
     click.echo(f"exubrush: {meta['status']}: {meta['message']}; {saved} (run.json: status "
                f"{meta['status']!r})", err=True)
     sys.exit(130 if meta["status"] == "interrupted" else 1)
-
-
-def _warn_unreachable(parameters) -> None:
-    from exubrush.models.geometry import can_reach, head_bristles
-
-    bristles = head_bristles(parameters.head)
-    distance = parameters.motion.interaction_distance
-    missing = sum(not can_reach(b, distance) for b in bristles)
-    if missing:
-        click.echo(f"exubrush: warning: {missing} of {len(bristles)} bristles cannot reach the "
-                   f"surface at motion.interaction_distance = {distance:g} mm; they get no "
-                   "contact", err=True)
 
 
 @main.command()
@@ -212,7 +207,7 @@ def frames(results_dirs, times, out, gif_frames):
     """Draw the bristles of one or more runs side by side (PNG frames and a GIF).
 
     Give a DFM and a PRB run of the same case to compare them frame by frame. To explore a
-    run interactively instead, see 'Looking at the bristles' in the README.
+    run interactively instead, use 'exubrush run --viewer' and 'exubrush view'.
     """
     from exubrush.frames import load_shapes, write_animation, write_frames
     from exubrush.results import ResultsError

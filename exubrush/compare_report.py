@@ -7,7 +7,7 @@ import math
 from pathlib import Path
 
 from exubrush.experiment import Aligned
-from exubrush.results import atomic_file
+from exubrush.files import atomic_file
 
 
 def _pct(value) -> str:

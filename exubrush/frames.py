@@ -11,15 +11,13 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
-import matplotlib
+import numpy as np
+from matplotlib.collections import LineCollection, PatchCollection
+from matplotlib.patches import Circle
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-from matplotlib.collections import LineCollection, PatchCollection  # noqa: E402
-from matplotlib.patches import Circle  # noqa: E402
-
-from exubrush.results import ResultsError, atomic_file, read_results  # noqa: E402
+from exubrush.files import atomic_file
+from exubrush.plotting import figure
+from exubrush.results import ResultsError, read_results
 
 VIEW_AXES = {"orthogonal": (1, 0), "parallel": (0, 1)}  # (slide axis, other axis) in x, y, z
 
@@ -52,14 +50,13 @@ class RunShapes:
 def load_shapes(directory: str | Path) -> RunShapes:
     """Read the shapes of a result directory (ResultsError if it has none)."""
     from exubrush.models.geometry import head_bristles
-    from exubrush.parameters.case import Case
-    from exubrush.parameters.fields import build
 
     results = read_results(directory)
     if results.shape_time.size == 0:
         raise ResultsError(f"{str(directory)!r} has no bristle shapes (shapes.npz)")
     meta = results.metadata
-    case = build(Case, meta["parameters"])
+    case = results.case()
+    # the geometry alone: a saved run's slide CSV may be gone, and its motion is not needed
     bristles = head_bristles(case.head)
     nodes = np.array(results.shape_nodes, dtype=float)
     if meta.get("model") == "prb":
@@ -105,8 +102,7 @@ def _draw_view(axis, run: RunShapes, sample: int, horizontal: int, limits) -> No
 
 
 def _figure(runs: list[RunShapes]):
-    fig, axes = plt.subplots(2, len(runs), figsize=(4.5 * len(runs), 5.5), squeeze=False)
-    return fig, axes
+    return figure(2, len(runs), figsize=(4.5 * len(runs), 5.5), squeeze=False)
 
 
 def _fill(fig, axes, runs, samples, limits) -> None:
@@ -133,7 +129,6 @@ def write_frames(runs: list[RunShapes], times, directory: Path) -> list[str]:
         name = f"frame_{k:03d}_t{t:08.3f}.png"
         with atomic_file(directory / name, "wb") as handle:
             fig.savefig(handle, format="png", dpi=100)
-        plt.close(fig)
         names.append(name)
     return names
 
@@ -160,5 +155,4 @@ def write_animation(runs: list[RunShapes], times, target: Path, fps: float = 8.0
     temporary = target.with_name(f".{target.name}.partial.gif")
     animation.save(temporary, writer=PillowWriter(fps=fps), dpi=80,
                    progress_callback=progress)
-    plt.close(fig)
     temporary.replace(target)

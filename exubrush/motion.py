@@ -13,6 +13,7 @@ ends), then holds for ``hold`` seconds before sliding starts.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -155,7 +156,7 @@ class HeadMotion:
         return self.slide.evaluate(t - self.slide_start)
 
 
-def start_height(case: Case, bristles: list[BristleGeometry]) -> float:
+def start_height(case: Case, bristles: Sequence[BristleGeometry]) -> float:
     """Height of the roots' surface above the plane at t = 0 [mm].
 
     Raises ValueError if the interaction distance is not below it, i.e. no bristle would
@@ -172,7 +173,7 @@ def start_height(case: Case, bristles: list[BristleGeometry]) -> float:
     return height
 
 
-def head_motion(case: Case, bristles: list[BristleGeometry]) -> tuple[HeadMotion, float]:
+def head_motion(case: Case, bristles: Sequence[BristleGeometry]) -> tuple[HeadMotion, float]:
     """The head's motion and the start height of the roots' surface above the plane [mm]."""
     m = case.motion
     height = start_height(case, bristles)

@@ -1,19 +1,27 @@
-"""Headless plots of results (matplotlib, Agg back end)."""
+"""Plots of results, drawn headless with matplotlib's Figure objects.
+
+No pyplot and no back-end switch: a notebook that imports exubrush keeps its own back end,
+and PNG files are written on any machine, with or without a display.
+"""
 
 from __future__ import annotations
 
-import matplotlib
+from matplotlib.figure import Figure
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+from exubrush.files import atomic_file
+from exubrush.metrics import friction_coefficient, travelled_distance
 
-from exubrush.results import atomic_file, friction_coefficient, travelled_distance  # noqa: E402
+
+def figure(rows: int, columns: int = 1, **options):
+    """A figure and its axes (a 2-D array if ``squeeze=False``), with no pyplot state."""
+    fig = Figure(figsize=options.pop("figsize", None))
+    return fig, fig.subplots(rows, columns, **options)
 
 
 def plot_forces(results, target) -> None:
     """F_n, F_t and μ_eff against travelled distance, written as PNG to ``target``."""
     distance = results.travelled_distance
-    fig, axes = plt.subplots(3, 1, figsize=(8, 8), sharex=True)
+    fig, axes = figure(3, 1, figsize=(8, 8), sharex=True)
     axes[0].plot(distance, results.normal_force, lw=0.8)
     axes[0].set_ylabel("normal force [N]")
     axes[1].plot(distance, results.tangential_force, lw=0.8, color="tab:orange")
@@ -30,7 +38,6 @@ def plot_forces(results, target) -> None:
         axis.grid(True, alpha=0.3)
     fig.tight_layout()
     fig.savefig(target, format="png", dpi=120)
-    plt.close(fig)
 
 
 def _series_axes(axes, x, aligned, xlabel, reference_label="measured"):
@@ -63,7 +70,7 @@ def plot_comparison(aligned, comparison, title, directory,
     names = []
     rows = comparison["strokes"]
     distance = travelled_distance(aligned.slider_position)
-    fig, axes = plt.subplots(3, 1, figsize=(9, 8), sharex=True)
+    fig, axes = figure(3, 1, figsize=(9, 8), sharex=True)
     _series_axes(axes, distance, aligned, "travelled distance [mm] (simulated slider)",
                  reference_label)
     for row in rows:
@@ -77,7 +84,7 @@ def plot_comparison(aligned, comparison, title, directory,
         margin = 0.15 * (last["flat_end"] - last["flat_start"])
         mask = ((aligned.time >= last["flat_start"] - margin)
                 & (aligned.time <= last["flat_end"] + margin))
-        fig, axes = plt.subplots(3, 1, figsize=(9, 8), sharex=True)
+        fig, axes = figure(3, 1, figsize=(9, 8), sharex=True)
         _series_axes(axes, aligned.time[mask], _masked(aligned, mask), "time [s]", reference_label)
         for axis in axes:
             axis.axvspan(last["flat_start"], last["flat_end"], color="tab:green", alpha=0.08)
@@ -86,7 +93,7 @@ def plot_comparison(aligned, comparison, title, directory,
     if len(rows) >= 2 and rows[-1]["index"] == rows[-2]["index"] + 1:
         first, last = rows[-2], rows[-1]
         mask = ((aligned.time >= first["start"]) & (aligned.time <= last["end"]))
-        fig, axes = plt.subplots(3, 1, figsize=(9, 8), sharex=True)
+        fig, axes = figure(3, 1, figsize=(9, 8), sharex=True)
         _series_axes(axes, aligned.slider_position[mask], _masked(aligned, mask),
                      "slider position [mm] (simulated slider)", reference_label)
         fig.suptitle(f"{title}\none period (strokes {first['index']} and {last['index']})",
@@ -110,5 +117,4 @@ def _save(fig, directory, name) -> str:
     fig.tight_layout()
     with atomic_file(directory / name, "wb") as handle:
         fig.savefig(handle, format="png", dpi=110)
-    plt.close(fig)
     return name

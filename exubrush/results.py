@@ -11,14 +11,15 @@ from __future__ import annotations
 
 import csv
 import json
-import os
-import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-NO_CONTACT_FORCE = 1e-6  # N; below this the head does not touch and μ_eff is undefined
+from exubrush.files import atomic_file
+from exubrush.metrics import friction_coefficient, travelled_distance
+from exubrush.parameters.case import Case
+from exubrush.parameters.fields import ParameterError, build
 
 CSV_COLUMNS = (
     ("time", "s"),
@@ -31,19 +32,6 @@ CSV_COLUMNS = (
 )
 
 
-def travelled_distance(slider_position: np.ndarray) -> np.ndarray:
-    """Cumulative slide path Σ|Δs| [mm] of a slider position series [mm]."""
-    return np.concatenate([[0.0], np.cumsum(np.abs(np.diff(slider_position)))])
-
-
-def friction_coefficient(normal_force: np.ndarray, tangential_force: np.ndarray) -> np.ndarray:
-    """|F_t| / F_n [-], NaN where F_n is below :data:`NO_CONTACT_FORCE` (undefined)."""
-    ratio = np.full_like(normal_force, np.nan, dtype=float)
-    touching = normal_force > NO_CONTACT_FORCE
-    ratio[touching] = np.abs(tangential_force[touching]) / normal_force[touching]
-    return ratio
-
-
 @dataclass
 class Results:
     """Time series of one run (units in :data:`CSV_COLUMNS`) plus metadata.
@@ -51,7 +39,7 @@ class Results:
     ``shapes`` holds the bristle centreline nodes: ``shape_time`` [s] of shape (n_t,) and
     ``shape_nodes`` [mm] of shape (n_t, n_bristles, n_nodes + 1, 3), root first, head frame
     fixed to the surface. ``shape_coordinates``, kept only if the run was asked to
-    (``output.solution_file``), holds rows (time [s], the head's ODE2 coordinates [mm, rad
+    (``output.solution_file = true``), holds rows (time [s], the head's ODE2 coordinates [mm, rad
     or Euler parameters]) at the shape interval, for Exudyn's SolutionViewer
     (exubrush.viewer).
     """
@@ -116,12 +104,27 @@ class Results:
             extra = {} if self.shape_coordinates is None else {
                 "coordinates": self.shape_coordinates}
             np.savez_compressed(handle, time=self.shape_time, nodes=self.shape_nodes, **extra)
-        from exubrush.plotting import plot_forces
+        from exubrush.plotting import plot_forces  # matplotlib only when a plot is drawn
 
         with atomic_file(directory / "forces.png", "wb") as handle:
             plot_forces(self, handle)
         self._save_metadata(directory)
         return directory
+
+    def case(self) -> Case:
+        """The parameters of the run, rebuilt from ``metadata["parameters"]``.
+
+        Raises
+        ------
+        ResultsError
+            If they do not make a valid case of this exubrush version.
+        """
+        try:
+            return build(Case, self.metadata["parameters"])
+        except (KeyError, ParameterError) as err:
+            made_by = self.metadata.get("versions", {}).get("exubrush", "an unknown version")
+            raise ResultsError(f"the run's parameters are not a valid case for this exubrush "
+                               f"(the run was made by exubrush {made_by}): {err}") from None
 
     def _save_metadata(self, directory: Path) -> None:
         with atomic_file(directory / "run.json", "w") as handle:
@@ -181,24 +184,3 @@ def _json_default(value):
     if isinstance(value, np.generic):
         return value.item()
     raise TypeError(f"cannot write {type(value).__name__} to JSON")
-
-
-class atomic_file:
-    """Open a temporary file beside ``path`` and rename it onto ``path`` on success."""
-
-    def __init__(self, path: Path, mode: str, **kwargs):
-        self.path, self.mode, self.kwargs = path, mode, kwargs
-
-    def __enter__(self):
-        fd, self.temporary = tempfile.mkstemp(dir=self.path.parent, prefix=f".{self.path.name}.")
-        self.handle = os.fdopen(fd, self.mode, **self.kwargs)
-        return self.handle
-
-    def __exit__(self, exc_type, exc, tb):
-        self.handle.close()
-        if exc_type is None:
-            os.chmod(self.temporary, 0o644)
-            os.replace(self.temporary, self.path)
-        else:
-            os.unlink(self.temporary)
-        return False

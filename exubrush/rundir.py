@@ -3,8 +3,11 @@
 A run writes into one directory. Before it starts:
 
 - a new or empty directory is used as it is;
-- a directory holding an unfinished run of the *same* case (same parameters and exubrush
-  version) is resumed: the bristle groups already solved are read back, not solved again;
+- a directory holding an unfinished run of the *same* case (same parameters) written by
+  the same code (exubrush version and, where known, git commit) is resumed: the bristle
+  groups already solved are read back, not solved again;
+- a checkpoint written by another version of the code is refused with both versions named:
+  a model fix that leaves the parameters unchanged must not mix old and new bristles;
 - any other exubrush results (another case, or a finished run) are refused unless the
   caller allows overwriting, which removes exubrush's own files and nothing else;
 - files exubrush did not write are never removed: such a directory is refused.
@@ -18,21 +21,22 @@ from __future__ import annotations
 
 import hashlib
 import json
-import os
 import shutil
-import tempfile
 from pathlib import Path
 
 import numpy as np
 
-import exubrush
+from exubrush.files import atomic_file
 from exubrush.parameters.case import Case
 from exubrush.parameters.fields import to_plain
+from exubrush.provenance import code_identity
+from exubrush.solution_files import SOLUTION_FILE
+from exubrush.solve import GroupSolution
 
 CHECKPOINT = ".checkpoint"
-# exubrush view writes exudyn-solution.txt beside the results (exubrush.viewer)
-RESULT_FILES = ("forces.csv", "run.json", "forces.png", "shapes.npz", "exudyn-solution.txt")
-ARRAYS = ("time", "reaction", "nodes", "coordinates")  # coordinates: only if kept
+CODE_FILE = "code.json"  # the exubrush version and commit that wrote the checkpoint
+# exubrush view writes its solution file beside the results (exubrush.viewer)
+RESULT_FILES = ("forces.csv", "run.json", "forces.png", "shapes.npz", SOLUTION_FILE)
 
 
 class RunDirectoryError(ValueError):
@@ -40,10 +44,16 @@ class RunDirectoryError(ValueError):
 
 
 def case_fingerprint(case: Case) -> str:
-    """Hash of every parameter and the exubrush version: equal means the same run."""
-    text = json.dumps({"case": to_plain(case), "exubrush": exubrush.__version__},
-                      sort_keys=True)
+    """Hash of every parameter: equal means the same case (the code is checked apart)."""
+    text = json.dumps({"case": to_plain(case)}, sort_keys=True)
     return hashlib.sha256(text.encode()).hexdigest()[:16]
+
+
+def _describe(code: dict | None) -> str:
+    if not code:
+        return "an exubrush older than 0.2.0"
+    commit = f" (commit {code['commit'][:12]})" if code.get("commit") else ""
+    return f"exubrush {code.get('exubrush')}{commit}"
 
 
 class RunDirectory:
@@ -53,6 +63,7 @@ class RunDirectory:
         self.path = Path(path)
         self.checkpoint = self.path / CHECKPOINT
         self.fingerprint = case_fingerprint(case)
+        self.code = code_identity()
         self.resumed = 0
         self._prepare(overwrite)
 
@@ -68,6 +79,8 @@ class RunDirectory:
             )
         stored = self._stored_fingerprint()
         if present and not overwrite:
+            if stored is not None and not self._finished_run():
+                self._check_code()
             if stored == self.fingerprint and not self._finished_run():
                 self.resumed = len(self.stored_groups())
                 return
@@ -80,7 +93,25 @@ class RunDirectory:
             target = self.path / name
             shutil.rmtree(target) if target.is_dir() else target.unlink()
         self.checkpoint.mkdir(parents=True, exist_ok=True)
+        with atomic_file(self.checkpoint / CODE_FILE, "w") as handle:
+            json.dump(self.code, handle)
         (self.checkpoint / "fingerprint").write_text(self.fingerprint)
+
+    def _check_code(self) -> None:
+        """Refuse a checkpoint of the same case written by other code."""
+        path = self.checkpoint / CODE_FILE
+        try:
+            stored = json.loads(path.read_text()) if path.is_file() else None
+        except (OSError, ValueError):
+            stored = None
+        same = stored is not None and stored.get("exubrush") == self.code["exubrush"] and (
+            None in (stored.get("commit"), self.code["commit"])
+            or stored.get("commit") == self.code["commit"])
+        if not same:
+            raise RunDirectoryError(
+                f"--out {self.path}: its checkpoint was written by {_describe(stored)}, this "
+                f"is {_describe(self.code)}; resuming would mix bristles solved by two "
+                "versions of the code: pass --overwrite to start afresh")
 
     def _stored_fingerprint(self) -> str | None:
         path = self.checkpoint / "fingerprint"
@@ -95,24 +126,18 @@ class RunDirectory:
         except (OSError, ValueError):
             return False
 
-    def stored_groups(self) -> dict[int, dict]:
+    def stored_groups(self) -> dict[int, GroupSolution]:
         """Finished groups on disk, by group index."""
         groups = {}
         for file in sorted(self.checkpoint.glob("group-*.npz")):
             with np.load(file) as data:
-                output = {key: data[key] for key in ARRAYS if key in data}
-                output.update(json.loads(str(data["scalars"])))
-            groups[int(file.stem.split("-")[1])] = output
+                groups[int(file.stem.split("-")[1])] = GroupSolution.from_arrays(data)
         return groups
 
-    def keep(self, index: int, output: dict) -> None:
+    def keep(self, index: int, solution: GroupSolution) -> None:
         """Store a finished group atomically (temporary file, then rename)."""
-        scalars = {k: v for k, v in output.items() if k not in ARRAYS}
-        arrays = {k: output[k] for k in ARRAYS if k in output}
-        fd, temporary = tempfile.mkstemp(dir=self.checkpoint, prefix=".group-", suffix=".npz")
-        with os.fdopen(fd, "wb") as handle:
-            np.savez(handle, scalars=json.dumps(scalars), **arrays)
-        os.replace(temporary, self.checkpoint / f"group-{index:05d}.npz")
+        with atomic_file(self.checkpoint / f"group-{index:05d}.npz", "wb") as handle:
+            np.savez(handle, **solution.to_arrays())
 
     def close(self) -> None:
         """Remove the checkpoint once complete results are on disk."""

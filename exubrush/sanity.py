@@ -9,19 +9,38 @@ numerical failure or a model that cannot bend (a jammed PRB link).
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 from exubrush.models.geometry import BristleGeometry, can_reach
 from exubrush.parameters.case import Case
 
 DYNAMIC_FACTOR = 2.0  # a suddenly applied load at most doubles the static response
 
 
-def normal_force_bound(case: Case, bristles: list[BristleGeometry]) -> float:
-    """Upper bound of the head's normal force [N] (see module docstring)."""
+def static_force_limits(case: Case, bristles: Sequence[BristleGeometry]) -> tuple[float, ...]:
+    """E·A·δ/l of each bristle [N]: its force straight and fully compressed (0 if it cannot
+    reach the surface)."""
     d = case.motion.interaction_distance
     E = case.head.material.youngs_modulus
+    return tuple(E * b.section.area * (b.length + b.tip_radius - d) / b.length
+                 if can_reach(b, d) else 0.0 for b in bristles)
+
+
+def normal_force_bound(limits: Sequence[float]) -> float:
+    """Upper bound of the normal force [N] of bristles with :func:`static_force_limits`
+    ``limits`` (see module docstring)."""
     total = 0.0
-    for b in bristles:
-        if can_reach(b, d):
-            interference = b.length + b.tip_radius - d
-            total += E * b.section.area * interference / b.length
+    for limit in limits:
+        total += limit
     return DYNAMIC_FACTOR * total
+
+
+def beyond_bound_message(model: str, t: float, force: float, bound: float) -> str:
+    """Why a solve stopped at a normal force [N] beyond the ``bound`` [N], and what to do."""
+    if model == "prb":
+        cause = ("the rigid PRB link jams where a real bristle would buckle (high friction or "
+                 "deep interference); use the DFM model for this case")
+    else:
+        cause = "a numerical blow-up; try a smaller solver.step_size or a softer contact"
+    return (f"normal force {force:.4g} N at t = {t:.6g} s exceeds the physical bound "
+            f"{bound:.4g} N (every bristle straight and fully compressed, x2): {cause}")

@@ -24,53 +24,17 @@ from exubrush.contact.exudyn_contact import (
 )
 from exubrush.contact.laws import builtin_contact_parameters
 from exubrush.models.dfm import add_dfm_bristle
-from exubrush.models.geometry import BristleGeometry, can_reach, head_bristles
-from exubrush.models.howell import howell_parameters
+from exubrush.models.geometry import BristleGeometry, can_reach
 from exubrush.models.prb import add_prb_bristle, stub_graphics
 from exubrush.models.stiffness import buckling_load
-from exubrush.motion import HeadMotion, head_motion
-from exubrush.parameters.case import Case
-from exubrush.reference.howell_fit import fit_prb_parameters
+from exubrush.motion import HeadMotion
+from exubrush.prepared import PreparedCase
 
 # the handle is a stiff block whose mass only enters the drive reaction, from which the
-# exact inertia force m·a of the prescribed motion is removed again (exubrush.results)
+# exact inertia force m·a of the prescribed motion is removed again
+# (exubrush.kinematics.head_force)
 HANDLE_SIZE = (20.0, 8.0, 3.0)  # mm
 HANDLE_DENSITY = 1.2e-9  # t/mm³ (acrylic-like)
-
-SLIDE_AXES = {"orthogonal": np.array([0.0, 1.0, 0.0]), "parallel": np.array([1.0, 0.0, 0.0])}
-
-
-def prb_parameters(case: Case) -> tuple[float, float]:
-    """(γ, K_Θ) for the PRB model at n = case.load_ratio(): Howell's table, fitted to the
-    exact elastica, or the explicit values (model.prb_parameters)."""
-    source = case.model.prb_parameters
-    if source == "explicit":
-        return case.model.prb_gamma, case.model.prb_stiffness_coefficient
-    if source == "fitted":
-        fit = fit_prb_parameters(case.load_ratio())
-        return fit.gamma, fit.stiffness_coefficient
-    return howell_parameters(case.load_ratio())
-
-
-def friction_window(case: Case, motion: HeadMotion) -> tuple[float, float] | None:
-    """When friction is blended in, or None if it acts from the start (motion.approach_friction).
-
-    "off" switches friction on during the hold after the approach; "auto" does so for the
-    PRB model only: a straight PRB link whose tip sticks cannot buckle as a real bristle
-    does, and a measured single bristle jammed at 126 N instead of buckling at ~0.1 N.
-    """
-    mode = case.motion.approach_friction
-    if mode == "on" or (mode == "auto" and case.model.kind == "dfm"):
-        return None
-    return (motion.approach_duration, motion.slide_start)
-
-
-def handle_kinematics(motion: HeadMotion, slide_axis: np.ndarray, t: float):
-    """Handle displacement from its start [mm], velocity [mm/s], acceleration [mm/s²] at t."""
-    s, v, a = motion.sliding(t)
-    z, vz, az = motion.descent(t)
-    down = np.array([0.0, 0.0, -1.0])
-    return s * slide_axis + z * down, v * slide_axis + vz * down, a * slide_axis + az * down
 
 
 @dataclass
@@ -82,7 +46,7 @@ class Scene:
     motion: HeadMotion
     slide_axis: np.ndarray
     handle_mass: float
-    bristles: list[BristleGeometry]
+    bristles: tuple[BristleGeometry, ...]
     drive_sensors: list = field(default_factory=list)
     node_sensors: list = field(default_factory=list)
     contacts: list = field(default_factory=list)
@@ -123,10 +87,10 @@ def _add_drive(scene: Scene, handle_node) -> None:
             )
 
 
-def _drawings(case: Case, bristles: list[BristleGeometry], gamma: float | None):
+def _drawings(prepared: PreparedCase, bristles, gamma: float | None):
     """Graphics of the surface (a checkerboard at z = 0) and of the handle (a block above
     the roots, and the PRB stubs of a link factor ``gamma``) for Exudyn's renderer [mm]."""
-    size = 2.0 * (max(HANDLE_SIZE) + case.motion.amplitude)
+    size = 2.0 * (max(HANDLE_SIZE) + prepared.case.motion.amplitude)
     surface = [graphics.CheckerBoard(point=[0.0, 0.0, 0.0], normal=[0.0, 0.0, 1.0], size=size)]
     handle = [graphics.Brick(centerPoint=[0.0, 0.0, 0.5 * HANDLE_SIZE[2]], size=HANDLE_SIZE,
                              color=[0.6, 0.6, 0.6, 0.5])]
@@ -135,12 +99,12 @@ def _drawings(case: Case, bristles: list[BristleGeometry], gamma: float | None):
     return surface, handle
 
 
-def _add_contact(scene: Scene, case: Case, plane, tip_body, bristle: BristleGeometry,
-                 laws: dict, window):
+def _add_contact(scene: Scene, prepared: PreparedCase, plane, tip_body,
+                 bristle: BristleGeometry, laws: dict):
     """The tip's contact with the plane: the paper's law as a user function (one per tip
     radius, cached in ``laws``), or Exudyn's built-in contact with the nearest parameters."""
-    backend = case.solver.user_functions
-    if backend == "builtin":
+    case, window = prepared.case, prepared.friction_window
+    if case.contact.backend == "exudyn-builtin":
         parameters = builtin_contact_parameters(
             case.contact,
             buckling_load(bristle.section, case.head.material.youngs_modulus, bristle.length),
@@ -151,62 +115,65 @@ def _add_contact(scene: Scene, case: Case, plane, tip_body, bristle: BristleGeom
                                        parameters)
     if bristle.tip_radius not in laws:
         laws[bristle.tip_radius] = contact_user_function(
-            scene.mbs, case.contact, bristle.tip_radius, backend, window)
+            scene.mbs, case.contact, bristle.tip_radius, window)
     return add_tip_contact(scene.mbs, plane, tip_body, laws[bristle.tip_radius])
 
 
-def build_scene(case: Case, selection: list[int] | None = None, drawn: bool = False) -> Scene:
-    """Assemble ``case`` into a ready-to-solve Exudyn system.
+def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None,
+                drawn: bool = False) -> Scene:
+    """Assemble the bristles ``selection`` of ``prepared`` into a ready-to-solve system.
 
     Parameters
     ----------
-    selection : list of int, optional
+    selection : tuple of int, optional
         Indices of the bristles to include (default: all). The motion is always that of
         the whole head, so a head split into groups moves identically in every group.
     drawn : bool
         Give surface, handle and bristles graphics for Exudyn's renderer (exubrush view);
         a solve needs none.
     """
-    all_bristles = head_bristles(case.head)
-    motion, start_height = head_motion(case, all_bristles)
-    bristles = all_bristles if selection is None else [all_bristles[i] for i in selection]
-    gamma, k_theta = prb_parameters(case) if case.model.kind == "prb" else (None, None)
-    surface_drawing, handle_drawing = _drawings(case, bristles, gamma) if drawn else ([], [])
+    case = prepared.case
+    bristles = (prepared.bristles if selection is None
+                else tuple(prepared.bristles[i] for i in selection))
+    prb = prepared.prb
+    gamma = None if prb is None else prb.gamma
+    surface_drawing, handle_drawing = _drawings(prepared, bristles, gamma) if drawn else ([], [])
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
     ground = mbs.AddObject(eii.ObjectGround(
         visualization=eii.VObjectGround(graphicsData=surface_drawing)))
     handle_inertia = InertiaCuboid(HANDLE_DENSITY, HANDLE_SIZE)
     handle = mbs.CreateRigidBody(
-        referencePosition=[0.0, 0.0, start_height], inertia=handle_inertia,
+        referencePosition=[0.0, 0.0, prepared.start_height], inertia=handle_inertia,
         nodeType=exu.NodeType.RotationRxyz, gravity=[0.0, 0.0, 0.0], show=drawn,
         graphicsDataList=handle_drawing, returnDict=True,
     )
-    scene = Scene(SC, mbs, motion, SLIDE_AXES[case.motion.direction], handle_inertia.Mass(),
+    scene = Scene(SC, mbs, prepared.motion, prepared.slide_axis, handle_inertia.Mass(),
                   bristles)
     _add_drive(scene, handle["nodeNumber"])
     plane = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=ground, localPosition=[0, 0, 0]))
     laws = {}
-    window = friction_window(case, motion)
-    origin = (0.0, 0.0, start_height)
+    origin = (0.0, 0.0, prepared.start_height)
     material = case.head.material
     for bristle in bristles:
         if case.model.kind == "dfm":
             items = add_dfm_bristle(mbs, handle["bodyNumber"], bristle, material,
                                     case.model.segments, origin, drawn, case.model.rotation)
         else:
-            items = add_prb_bristle(mbs, handle["bodyNumber"], bristle, material, gamma, k_theta,
-                                    origin, drawn, case.model.rotation)
+            items = add_prb_bristle(mbs, handle["bodyNumber"], bristle, material, prb.gamma,
+                                    prb.stiffness_coefficient, origin, drawn,
+                                    case.model.rotation)
         scene.node_sensors.append([
             mbs.AddSensor(eii.SensorNode(nodeNumber=n, storeInternal=True, writeToFile=False,
                                          outputVariableType=exu.OutputVariableType.Position))
             for n in items.nodes
         ])
         if can_reach(bristle, case.motion.interaction_distance):
-            scene.contacts.append(_add_contact(scene, case, plane, items.tip_body, bristle,
-                                               laws, window))
+            scene.contacts.append(_add_contact(scene, prepared, plane, items.tip_body, bristle,
+                                               laws))
     scene.keep_alive.extend(laws.values())
-    if case.solver.user_functions == "builtin" and window is not None and scene.contacts:
+    window = prepared.friction_window
+    if case.contact.backend == "exudyn-builtin" and window is not None and scene.contacts:
         scene.step_hooks.append(
             builtin_friction_blend(scene.contacts, case.contact.dynamic_friction, window))
     mbs.Assemble()

@@ -21,7 +21,8 @@ def quiet(settings: exu.SimulationSettings) -> exu.SimulationSettings:
 def dynamic_settings(solver: Solver, end_time: float, output_interval: float):
     """Implicit generalized-α settings for a brushing run.
 
-    Choices (EXUDYN_NOTES.md, verified in this project): spectral radius 0 by default,
+    Choices (each measured on this problem, validation/benchmarks/README.md): spectral
+    radius 0 by default,
     modified Newton, automatic step reduction down to ``minimum_step_size`` (snap-through
     at stroke reversals needs tiny steps) with a quick recovery (``step_recovery_steps``:
     the step may double again after 2 good steps instead of Exudyn's 10, which kept the
@@ -42,7 +43,7 @@ def dynamic_settings(solver: Solver, end_time: float, output_interval: float):
     ti.adaptiveStepRecoverySteps = solver.step_recovery_steps
     ti.generalizedAlpha.spectralRadius = solver.spectral_radius
     ti.generalizedAlpha.computeInitialAccelerations = True
-    ti.newton.useModifiedNewton = solver.modified_newton == "yes"
+    ti.newton.useModifiedNewton = solver.modified_newton
     ti.newton.relativeTolerance = solver.relative_tolerance
     ti.newton.absoluteTolerance = solver.absolute_tolerance
     ti.newton.adaptInitialResidual = False
@@ -86,3 +87,20 @@ def record_coordinates(settings: exu.SimulationSettings, path: str, period: floa
     export.algebraicCoordinates = False
     export.dataCoordinates = False
     export.ODE1Velocities = False
+
+
+def static_settings(load_steps: int, linear_solver: str = "EXUdense") -> exu.SimulationSettings:
+    """Static Newton settings for the convergence references (exubrush.statics,
+    exubrush.reference.shear_beam): the load in ``load_steps`` equal increments with
+    adaptive steps, Newton tolerances 1e-8 relative and 1e-10 absolute (tighter ones make
+    Exudyn's static Newton solve fail, measured on the shear-beam reference), at most 50
+    iterations per increment."""
+    settings = quiet(exu.SimulationSettings())
+    static = settings.staticSolver
+    static.numberOfLoadSteps = load_steps
+    static.adaptiveStep = True
+    static.newton.relativeTolerance = 1e-8
+    static.newton.absoluteTolerance = 1e-10
+    static.newton.maxIterations = 50
+    settings.linearSolver.solverType = getattr(exu.LinearSolverType, linear_solver)
+    return settings

@@ -10,7 +10,7 @@ from exubrush.models.dfm import add_dfm_bristle
 from exubrush.models.geometry import BristleGeometry
 from exubrush.models.prb import add_prb_bristle
 from exubrush.parameters.case import Material
-from exubrush.solver import quiet
+from exubrush.solver import static_settings
 
 
 def tip_loaded_cantilever(
@@ -47,12 +47,6 @@ def tip_loaded_cantilever(
     tip = mbs.AddMarker(eii.MarkerBodyPosition(bodyNumber=items.tip_body, localPosition=[0, 0, 0]))
     mbs.AddLoad(eii.LoadForceVector(markerNumber=tip, loadVector=list(force)))
     mbs.Assemble()
-    settings = quiet(exu.SimulationSettings())
-    settings.staticSolver.numberOfLoadSteps = load_steps
-    settings.staticSolver.newton.relativeTolerance = 1e-8
-    settings.staticSolver.newton.absoluteTolerance = 1e-10
-    settings.staticSolver.newton.maxIterations = 50
-    settings.staticSolver.adaptiveStep = True
-    if not mbs.SolveStatic(settings):
+    if not mbs.SolveStatic(static_settings(load_steps)):
         raise RuntimeError("static solve of the cantilever did not converge")
     return np.asarray(mbs.GetNodeOutput(items.nodes[-1], exu.OutputVariableType.Position))

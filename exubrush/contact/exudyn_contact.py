@@ -7,9 +7,10 @@ velocity and angular velocity in the plane frame, applies the returned force at 
 centre and the returned torque to the tip body, both with a minus sign (a spring's
 restoring convention, checked in tests/integration/test_contact_connector.py). The law is
 :func:`exubrush.contact.laws.sphere_plane_force`, recorded as an Exudyn symbolic (C++) user
-function by default, or called as plain Python.
+function by default (``contact.backend = "paper-symbolic"``), or called as plain Python
+(``"paper-python"``).
 
-The approximate fast path ("builtin") uses Exudyn's own ``ObjectContactSphereTriangle``
+The approximate fast path (``"exudyn-builtin"``) uses Exudyn's own ``ObjectContactSphereTriangle``
 against one triangle covering the plane, with the law's nearest parameters
 (:func:`exubrush.contact.laws.builtin_contact_parameters`).
 """
@@ -20,7 +21,8 @@ import exudyn as exu
 import exudyn.itemInterface as eii
 from exudyn.advancedUtilities import CreateSymbolicUserFunction
 
-from exubrush.contact.laws import FLOAT_MATH, ContactLaw, cubic_step, sphere_plane_force
+from exubrush.contact.laws import FLOAT_MATH, cubic_step, sphere_plane_force
+from exubrush.parameters.case import ContactLaw
 
 # half the side of the square of the plane z = 0 that the built-in contact's triangle
 # covers [mm]: far beyond any head and stroke
@@ -31,20 +33,25 @@ USER_FUNCTION_NAME = "springForceTorqueUserFunction"
 
 
 def contact_user_function(
-    mbs, law: ContactLaw, radius: float, backend: str = "symbolic", friction_window=None
+    mbs, law: ContactLaw, radius: float, friction_window=None
 ):
     """Return an Exudyn spring-force-torque user function for one sphere radius.
 
+    ``law.backend`` chooses how: ``"paper-symbolic"`` records the law into a C++ expression
+    tree (keep the returned object alive as long as ``mbs`` runs); ``"paper-python"``
+    returns the plain Python function.
+
     Parameters
     ----------
-    backend : {"symbolic", "python"}
-        ``"symbolic"`` records the law into a C++ expression tree (keep the returned object
-        alive as long as ``mbs`` runs); ``"python"`` returns the plain Python function.
     friction_window : (float, float), optional
         Times [s] between which friction is blended in (cubic step from 0 to 1); ``None``
         means friction acts from the start.
     """
-    math_backend = exu.symbolic if backend == "symbolic" else FLOAT_MATH
+    backend = law.backend
+    if backend not in ("paper-symbolic", "paper-python"):
+        raise ValueError(f"contact.backend {backend!r} has no user function; use "
+                         "paper-symbolic or paper-python")
+    math_backend = exu.symbolic if backend == "paper-symbolic" else FLOAT_MATH
 
     def contact_force(mbs, t, itemNumber, displacement, rotation, velocity, angularVelocity,
                       stiffness, damping, rotJ0, rotJ1, offset):
@@ -55,10 +62,8 @@ def contact_user_function(
                                   math_backend, scale)
         return [-component for component in load]
 
-    if backend == "python":
+    if backend == "paper-python":
         return contact_force
-    if backend != "symbolic":
-        raise ValueError(f"unknown user-function back end {backend!r}; use symbolic or python")
     return CreateSymbolicUserFunction(
         mbs, contact_force, USER_FUNCTION_NAME, itemTypeName=CONNECTOR_TYPE
     )

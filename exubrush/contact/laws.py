@@ -9,7 +9,7 @@ Normal force, Hertz-type penalty with Flores-type damping (the paper's eq. 14)::
 
     F_n = k δ^m1 + c sign(δ') |δ'|^m2 δ^m3,   δ > 0,   F_n clamped at >= 0
 
-Decision (SPEC.md §4): the surface never pulls. When the damping term outweighs the
+Decision: the surface never pulls. When the damping term outweighs the
 elastic one while the sphere leaves the surface, F_n is clamped to zero rather than
 allowed to become adhesive.
 
@@ -23,10 +23,11 @@ No stiction state: the law is regularised.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from types import SimpleNamespace
+from typing import TYPE_CHECKING
 
-from exubrush.parameters.fields import param
+if TYPE_CHECKING:  # the laws read the parameters' attributes only: no import at run time
+    from exubrush.parameters.case import ContactLaw
 
 
 def _float_if(condition, if_true, if_false):
@@ -42,34 +43,6 @@ FLOAT_MATH = SimpleNamespace(
     IfThenElse=_float_if,
 )
 """Math back end for plain Python floats."""
-
-
-@dataclass(frozen=True)
-class ContactLaw:
-    """Parameters of the normal and friction laws (mm-N-s units; defaults: paper table 2).
-
-    k and c are the coefficients of the law evaluated in mm, N and s. Their units are
-    written for the paper's exponents (N/mm^1.3 for m1 = 1.3; N·s/mm³ for m2 = 1, m3 = 2);
-    with other exponents the number is still read in mm-N-s, whatever the unit says.
-    """
-
-    stiffness: float = param(100.0, "penalty stiffness k", "N/mm^1.3", above=0.0)
-    stiffness_exponent: float = param(1.3, "stiffness exponent m1", above=0.0)
-    damping: float = param(0.2, "Flores damping coefficient c", "N*s/mm^3", minimum=0.0)
-    damping_rate_exponent: float = param(1.0, "damping rate exponent m2", above=0.0)
-    damping_depth_exponent: float = param(2.0, "indentation exponent m3", minimum=0.0)
-    static_friction: float = param(0.8, "static friction coefficient mu_s", minimum=0.0)
-    dynamic_friction: float = param(0.76, "dynamic friction coefficient mu_d", minimum=0.0)
-    static_velocity: float = param(1.2, "static velocity tolerance v_s", "mm/s", above=0.0)
-    dynamic_velocity: float = param(1.5, "dynamic velocity tolerance v_d", "mm/s", above=0.0)
-
-    def check(self) -> None:
-        """Cross-field rules: v_s < v_d."""
-        if not self.static_velocity < self.dynamic_velocity:
-            raise ValueError(
-                f"static_velocity ({self.static_velocity:g} mm/s) must be below "
-                f"dynamic_velocity ({self.dynamic_velocity:g} mm/s)"
-            )
 
 
 def cubic_step(x, x0, h0, x1, h1, m=FLOAT_MATH):

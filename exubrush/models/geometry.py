@@ -1,10 +1,11 @@
 """Where each bristle of a head sits and how it is oriented (pure, mm units).
 
-Symmetry breaking (SPEC.md, EXUDYN_NOTES.md): a perfectly straight, perfectly aligned
-bristle pressed onto a plane cannot choose a side to escape to at a stroke reversal, and
-the solver jams. Each root is therefore tilted by ``Head.root_tilt`` (default 0.5°) about a
-horizontal axis whose direction is drawn from a seeded uniform distribution, so two runs
-with the same seed are identical and ``root_tilt = 0`` restores the ideal head.
+Symmetry breaking (docs/model.md; measured in validation/benchmarks/README.md): a perfectly
+straight, perfectly aligned bristle pressed onto a plane cannot choose a side to escape to
+at a stroke reversal, and the solver jams. Each root is therefore tilted by
+``Head.root_tilt`` (default 0.5°) about a horizontal axis whose direction is drawn from a
+seeded uniform distribution, so two runs with the same seed are identical and
+``root_tilt = 0`` restores the ideal head.
 """
 
 from __future__ import annotations

@@ -2,7 +2,8 @@
 
 n = F_n / F_t is the ratio of the axial (compressive for n > 0) to the transverse part of
 the tip load. The table is Howell's (Compliant Mechanisms, Wiley 2001, table 5.1), as
-reproduced in SPEC.md §2. For a tip sliding on a plane with Coulomb friction μ, n = 1/μ.
+reproduced in the paper's table 1. For a tip sliding on a plane with Coulomb friction μ,
+n = 1/μ.
 """
 
 from __future__ import annotations

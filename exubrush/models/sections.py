@@ -6,7 +6,7 @@ along z (across the head), ``I_z`` bending that moves it along y (along the head
 
 The torsion constant is Saint-Venant's J, not the polar moment: the paper's PRB torsion
 spring uses the polar moment, which overestimates the torsional stiffness of a 0.6 x 0.9 mm
-blade by about 1.8x (see SPEC.md, section 1). References: Roark's Formulas for Stress and
+blade by about 1.8x (docs/model.md, Torsion). References: Roark's Formulas for Stress and
 Strain, 8th ed., table 10.7 (rectangle, ellipse); Cowper (1966) for the shear coefficient.
 """
 

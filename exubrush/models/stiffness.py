@@ -1,8 +1,8 @@
 """Lumped stiffness of the bristle models (pure functions, mm-N units).
 
 Discrete flexible model (DFM)
-    The Timoshenko matrix of a cantilever segment of length L (SPEC.md §3, the paper's eq. 9
-    with its two I_xy misprints corrected) relates the end's displacement and rotation,
+    The Timoshenko matrix of a cantilever segment of length L (the paper's eq. 9 with its
+    two I_xy misprints corrected) relates the end's displacement and rotation,
     measured in the frame of the clamped start, to the end force and moment. exubrush puts
     the spring of each segment at the segment's *midpoint*, with both connector frames there,
     so the connector is symmetric in its two bodies. Moving the matrix to the midpoint
@@ -12,7 +12,7 @@ Discrete flexible model (DFM)
     for any small relative motion; ``midpoint_stiffness`` is tested against that transform.
 
 Pseudo-rigid-body model (PRB)
-    Three torsional springs at the characteristic pivot (SPEC.md §2): k_x = GJ/(γl),
+    Three torsional springs at the characteristic pivot (Howell 2001, ch. 5): k_x = GJ/(γl),
     k_y = γK_Θ·EI_y/l, k_z = γK_Θ·EI_z/l.
 """
 
@@ -29,7 +29,7 @@ def shear_parameters(
     """Timoshenko shear parameters (Φ_y, Φ_z) of a segment [-].
 
     Φ_y = 12·E·I_z / (κ·G·A·L²) governs bending in the x-y plane, Φ_z = 12·E·I_y / (κ·G·A·L²)
-    bending in the x-z plane (SPEC.md §3).
+    bending in the x-z plane (Timoshenko beam theory).
     """
     shear_stiffness = section.shear_coefficient * shear_modulus * section.area
     phi_y = 12.0 * youngs_modulus * section.second_moment_z / (shear_stiffness * length**2)

@@ -7,7 +7,10 @@ width) and z = x × y (the section height, across the head).
 
 Defaults are the paper's silicone brush (E, tip radius, d, contact law) and, where the
 paper is silent, exubrush's documented choices (layout, section, length, ν, ρ, damping,
-perturbation, approach): see README, "Default head".
+perturbation, approach): see docs/model.md, "Default head".
+
+Every section derives from :class:`~exubrush.parameters.fields.Parameters`, so
+``case.replace(...)`` and ``case.solver.replace(...)`` give validated copies.
 """
 
 from __future__ import annotations
@@ -15,13 +18,16 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field, replace
 
-from exubrush.contact.laws import ContactLaw
-from exubrush.models.sections import SHAPES
-from exubrush.parameters.fields import build, param
+from exubrush.parameters.fields import Parameters, build, param
+
+CONTACT_BACKENDS = ("paper-symbolic", "paper-python", "exudyn-builtin")
+# the shapes exubrush.models.sections implements (a test keeps the two lists equal; the
+# parameters do not import the models)
+SECTION_SHAPES = ("rectangle", "ellipse", "circle")
 
 
 @dataclass(frozen=True)
-class Material:
+class Material(Parameters):
     """Linear elastic bristle material."""
 
     youngs_modulus: float = param(7.5, "Young's modulus E (paper: silicone)", "MPa", above=0.0)
@@ -39,11 +45,11 @@ class Material:
 
 
 @dataclass(frozen=True)
-class BristleShape:
+class BristleShape(Parameters):
     """Geometry of one straight bristle."""
 
     length: float = param(5.0, "free length, root to tip-sphere centre", "mm", above=0.0)
-    section: str = param("rectangle", "cross-section shape", "text", choices=SHAPES)
+    section: str = param("rectangle", "cross-section shape", "text", choices=SECTION_SHAPES)
     width: float = param(0.6, "section width along the head's long axis", "mm", above=0.0)
     height: float = param(0.9, "section height across the head", "mm", above=0.0)
     tip_radius: float = param(0.4, "radius of the tip sphere (paper)", "mm", above=0.0)
@@ -55,7 +61,7 @@ class BristleShape:
 
 
 @dataclass(frozen=True)
-class BristleEntry:
+class BristleEntry(Parameters):
     """One bristle of an explicit list layout (head.layout = "list")."""
 
     x: float = param(0.0, "root position along the head's long axis", "mm")
@@ -63,14 +69,14 @@ class BristleEntry:
     tilt_x: float = param(0.0, "root tilt about the head's long axis", "rad", "deg")
     tilt_y: float = param(0.0, "root tilt about the across axis", "rad", "deg")
     length: float = param(5.0, "free length, root to tip-sphere centre", "mm", above=0.0)
-    section: str = param("rectangle", "cross-section shape", "text", choices=SHAPES)
+    section: str = param("rectangle", "cross-section shape", "text", choices=SECTION_SHAPES)
     width: float = param(0.6, "section width along the head's long axis", "mm", above=0.0)
     height: float = param(0.9, "section height across the head", "mm", above=0.0)
     tip_radius: float = param(0.4, "radius of the tip sphere", "mm", above=0.0)
 
 
 @dataclass(frozen=True)
-class Head:
+class Head(Parameters):
     """Bristle layout of the head.
 
     ``layout = "grid"`` places ``rows x columns`` copies of ``bristle`` on a regular grid
@@ -105,7 +111,45 @@ class Head:
 
 
 @dataclass(frozen=True)
-class Model:
+class ContactLaw(Parameters):
+    """Tip-surface contact: the paper's normal and friction laws (mm-N-s units; defaults:
+    the paper's table 2) and how they are computed (``backend``).
+
+    k and c are the coefficients of the law evaluated in mm, N and s. Their units are
+    written for the paper's exponents (N/mm^1.3 for m1 = 1.3; N·s/mm³ for m2 = 1, m3 = 2);
+    with other exponents the number is still read in mm-N-s, whatever the unit says.
+    The law itself is :mod:`exubrush.contact.laws`.
+    """
+
+    stiffness: float = param(100.0, "penalty stiffness k", "N/mm^1.3", above=0.0)
+    stiffness_exponent: float = param(1.3, "stiffness exponent m1", above=0.0)
+    damping: float = param(0.2, "Flores damping coefficient c", "N*s/mm^3", minimum=0.0)
+    damping_rate_exponent: float = param(1.0, "damping rate exponent m2", above=0.0)
+    damping_depth_exponent: float = param(2.0, "indentation exponent m3", minimum=0.0)
+    static_friction: float = param(0.8, "static friction coefficient mu_s", minimum=0.0)
+    dynamic_friction: float = param(0.76, "dynamic friction coefficient mu_d", minimum=0.0)
+    static_velocity: float = param(1.2, "static velocity tolerance v_s", "mm/s", above=0.0)
+    dynamic_velocity: float = param(1.5, "dynamic velocity tolerance v_d", "mm/s", above=0.0)
+    backend: str = param(
+        "paper-symbolic",
+        "how the contact is computed: paper-symbolic = the paper's law compiled by Exudyn "
+        "(C++); paper-python = the same law in Python (slower, same forces); exudyn-builtin = "
+        "Exudyn's own sphere-triangle contact with the nearest parameters (one friction "
+        "coefficient, linear damping: an approximation, see docs/model.md)",
+        "text", choices=CONTACT_BACKENDS,
+    )
+
+    def check(self) -> None:
+        """Cross-field rules: v_s < v_d."""
+        if not self.static_velocity < self.dynamic_velocity:
+            raise ValueError(
+                f"static_velocity ({self.static_velocity:g} mm/s) must be below "
+                f"dynamic_velocity ({self.dynamic_velocity:g} mm/s)"
+            )
+
+
+@dataclass(frozen=True)
+class Model(Parameters):
     """Bristle model and its discretisation."""
 
     kind: str = param("dfm", "bristle model", "text", choices=("dfm", "prb"))
@@ -135,7 +179,7 @@ class Model:
 
 
 @dataclass(frozen=True)
-class Motion:
+class Motion(Parameters):
     """Approach, hold and slide of the head (see exubrush.motion)."""
 
     direction: str = param(
@@ -169,11 +213,20 @@ class Motion:
 
 
 @dataclass(frozen=True)
-class Solver:
-    """Exudyn implicit solver settings (generalized-alpha)."""
+class Solver(Parameters):
+    """Exudyn implicit solver settings (generalized-alpha with automatic step reduction).
 
-    # defaults = the "balanced" preset (exubrush.presets; README, Performance)
-    step_size: float = param(2e-3, "maximum (initial) time step", "s", "ms", above=0.0)
+    The defaults are the ``balanced`` preset (exubrush.presets); why each is what it is,
+    with measurements, is in validation/benchmarks/README.md.
+    """
+
+    RENAMED = {
+        "user_functions": "renamed contact.backend: 'symbolic' is now 'paper-symbolic', "
+                          "'python' 'paper-python', 'builtin' 'exudyn-builtin'",
+    }
+
+    step_size: float = param(2e-3, "largest time step (the step is cut where Newton fails)",
+                             "s", "ms", above=0.0)
     minimum_step_size: float = param(1e-9, "smallest step of the automatic step reduction",
                                      "s", above=0.0)
     spectral_radius: float = param(
@@ -181,48 +234,36 @@ class Solver:
     )
     relative_tolerance: float = param(1e-6, "Newton relative tolerance", above=0.0)
     absolute_tolerance: float = param(1e-10, "Newton absolute tolerance (residual)", above=0.0)
-    modified_newton: str = param("yes", "reuse the Jacobian between steps", "text",
-                                 choices=("yes", "no"))
-    # at most 8 of them are modified-Newton iterations before the Jacobian is refreshed;
-    # with 8 in all, one-bristle solves failed at a reversal (10 and 12 passed)
+    modified_newton: bool = param(True, "reuse the Jacobian between Newton iterations and "
+                                        "steps (false: a fresh Jacobian every iteration)")
+    # below 10, one-bristle solves failed at a reversal (validation/benchmarks/README.md)
     newton_iterations: int = param(
-        12, "Newton iterations before a step is cut (Exudyn's newton.maxIterations; with "
-        "its default 25 the default head took 12 % longer, in hopeless iterations at "
-        "reversals)",
-        minimum=10,
+        12, "Newton iterations before a step is given up and cut", minimum=10,
     )
     linear_solver: str = param(
         "auto",
-        "Exudyn linear solver: auto = EigenDense per bristle (20 % faster than EXUdense) and "
-        "EigenSparse for a coupled head",
+        "linear solver of Newton's steps: auto = EigenDense for one bristle, EigenSparse for "
+        "a coupled head",
         "text", choices=("auto", "EigenDense", "EXUdense", "EigenSparse"),
     )
     step_recovery_steps: int = param(
-        2, "successful steps after a step reduction before the step may grow again "
-        "(Exudyn's adaptiveStepRecoverySteps; its default 10 made PRB stick-slip 4-8x slower)",
+        2, "successful steps after a step reduction before the step may grow again",
         minimum=1,
     )
     partition: str = param(
         "per-bristle",
-        "per-bristle: each bristle its own system, in parallel processes (bristles do not "
-        "touch each other); coupled: the whole head as one system",
+        "per-bristle: each bristle its own system, solved in parallel processes (bristles do "
+        "not touch each other); coupled: the whole head as one system",
         "text", choices=("per-bristle", "coupled"),
     )
-    user_functions: str = param(
-        "symbolic",
-        "contact back end: the paper's law as a symbolic (C++) or python user function, or "
-        "builtin = Exudyn's own sphere-triangle contact with the nearest parameters (one "
-        "friction coefficient, linear damping; an approximation, see README Performance)",
-        "text", choices=("symbolic", "python", "builtin"),
-    )
     threads: int = param(
-        1, "Exudyn threads for a coupled head (parallel.numberOfThreads); needs the builtin "
-        "contact: with user-function contacts, threads broke Newton or hung", minimum=1,
+        1, "Exudyn threads for a coupled head (needs contact.backend exudyn-builtin)",
+        minimum=1,
     )
 
     def check(self) -> None:
         """Spectral radius within [0, 1]; minimum step below the step; threads only for a
-        coupled head with the builtin contact."""
+        coupled head."""
         if self.spectral_radius > 1.0:
             raise ValueError(f"spectral_radius {self.spectral_radius:g} must be <= 1")
         if self.minimum_step_size > self.step_size:
@@ -232,23 +273,17 @@ class Solver:
                 f"threads = {self.threads} needs partition 'coupled': per-bristle already "
                 "solves one bristle per process on every core"
             )
-        if self.threads > 1 and self.user_functions != "builtin":
-            raise ValueError(
-                f"threads = {self.threads} needs user_functions 'builtin': with the "
-                f"{self.user_functions} contact law Exudyn's threads broke Newton or hung "
-                "(README, Performance); use threads = 1 or the builtin contact"
-            )
 
 
 @dataclass(frozen=True)
-class Output:
+class Output(Parameters):
     """What is recorded."""
 
     interval: float = param(0.01, "force output interval", "s", above=0.0)
     shape_interval: float = param(0.1, "bristle shape output interval", "s", above=0.0)
-    solution_file: str = param(
-        "no", "also keep every node's coordinates at shape_interval, for Exudyn's "
-        "SolutionViewer (exubrush view)", "text", choices=("no", "yes"))
+    solution_file: bool = param(
+        False, "also keep every node's coordinates at shape_interval, for Exudyn's "
+        "SolutionViewer (exubrush view)")
 
     def check(self) -> None:
         """Shapes are sampled from the force output, so not more often than it."""
@@ -258,7 +293,7 @@ class Output:
 
 
 @dataclass(frozen=True)
-class Case:
+class Case(Parameters):
     """A complete brushing case."""
 
     name: str = param("orthogonal", "case name", "text")
@@ -285,7 +320,7 @@ class Case:
                              "number") from None
 
     def check(self) -> None:
-        """Rules that tie sections together (PRB parameters, friction blending)."""
+        """Rules that tie sections together (PRB parameters, threads, friction blending)."""
         prb = self.model.kind == "prb"
         source = self.model.prb_parameters
         if prb and source != "explicit":
@@ -295,6 +330,12 @@ class Case:
                 raise ValueError(f"PRB load ratio n = {n:.4g} is outside [{low:g}, 10] of "
                                  f"model.prb_parameters '{source}'; set the PRB parameters "
                                  "explicitly")
+        if self.solver.threads > 1 and self.contact.backend != "exudyn-builtin":
+            raise ValueError(
+                f"solver.threads = {self.solver.threads} needs contact.backend "
+                f"'exudyn-builtin': with the {self.contact.backend} law Exudyn's threads broke "
+                "Newton or hung; use solver.threads = 1 or the built-in contact"
+            )
         blended = self.motion.approach_friction == "off" or (
             prb and self.motion.approach_friction == "auto")
         if blended and self.motion.hold_duration <= 0.0:

@@ -79,6 +79,10 @@ def _nested_entry_type(annotation: Any) -> type | None:
 
 def _read_scalar(key: str, value: Any, meta: dict, annotation: Any) -> Any:
     unit = meta["unit"]
+    if annotation is bool:
+        if not isinstance(value, bool):
+            raise ParameterError(f"{key}: expected true or false, got {value!r}")
+        return value
     if unit == "text":
         if not isinstance(value, str):
             raise ParameterError(f"{key}: expected text, got {value!r}")
@@ -101,7 +105,13 @@ def _read_scalar(key: str, value: Any, meta: dict, annotation: Any) -> Any:
             raise ParameterError(f"{key}: {err}") from None
         if not math.isfinite(number):
             raise ParameterError(f"{key}: {value!r} is not a finite number")
-    shown = value if isinstance(value, str) else repr(value)
+    _check_range(key, number, value if isinstance(value, str) else repr(value), meta)
+    return number
+
+
+def _check_range(key: str, number: float, shown: str, meta: dict) -> None:
+    """Refuse ``number`` (internal unit) outside the field's range; ``shown`` is how the
+    user wrote it."""
     for bound, fails, relation in (
         ("minimum", lambda b: number < b, ">="),
         ("above", lambda b: number <= b, ">"),
@@ -109,7 +119,6 @@ def _read_scalar(key: str, value: Any, meta: dict, annotation: Any) -> Any:
     ):
         if meta[bound] is not None and fails(meta[bound]):
             raise ParameterError(f"{key}: {shown} must be {relation} {_bound_text(meta, bound)}")
-    return number
 
 
 def _bound_text(meta: dict, bound: str) -> str:
@@ -131,6 +140,8 @@ def build(cls: type, data: dict | None, prefix: str = "") -> Any:
     types = _field_types(cls)
     names = {f.name for f in dataclasses.fields(cls)}
     for key in data:
+        if key in getattr(cls, "RENAMED", {}):
+            raise ParameterError(f"{prefix}{key}: {cls.RENAMED[key]}")
         if key not in names:
             raise ParameterError(
                 f"{prefix}{key}: unknown key; known keys here: {', '.join(sorted(names))}"
@@ -214,13 +225,16 @@ def _fill_table(table: Any, instance: Any) -> None:
         if dataclasses.is_dataclass(annotation) or _nested_entry_type(annotation) is not None:
             nested.append((f.name, annotation, value))
             continue
-        table.add(f.name, _display_value(value, f.metadata))
+        item = tomlkit.item(_display_value(value, f.metadata))
         unit = f.metadata["display"]
         hint = f"[{unit}]" if unit not in ("1", "text") else "[-]" if unit == "1" else ""
+        if isinstance(value, bool):
+            hint = "; true or false"
         choices = f.metadata["choices"]
         if choices:
             hint = "; one of " + ", ".join(choices)
-        table[f.name].comment(f"{f.metadata['doc']} {hint}".strip())
+        item.comment(f"{f.metadata['doc']} {hint}".strip())
+        table.add(f.name, item)
     for name, annotation, value in nested:
         if dataclasses.is_dataclass(annotation):
             sub = tomlkit.table()
@@ -251,12 +265,88 @@ def parse_override(assignment: str) -> tuple[str, Any]:
 def apply_override(data: dict, cls: type, key: str, value: Any) -> None:
     """Set dotted ``key`` in the nested mapping ``data`` after checking it exists in ``cls``."""
     known = dotted_keys(cls)
+    *parents, leaf = key.split(".")
+    owner = _owner_class(cls, parents)
+    if owner is not None and leaf in getattr(owner, "RENAMED", {}):
+        raise ParameterError(f"--set {key}: {owner.RENAMED[leaf]}")
     if key not in known:
         close = [k for k in known if k.split(".")[-1] == key.split(".")[-1]]
         hint = f"; did you mean {' or '.join(close)}?" if close else "; see 'exubrush case'"
         raise ParameterError(f"--set {key}: unknown parameter{hint}")
-    *parents, leaf = key.split(".")
     table = data
     for part in parents:
         table = table.setdefault(part, {})
     table[leaf] = value
+
+
+def _owner_class(cls: type, parents: list[str]) -> type | None:
+    """The parameter dataclass reached from ``cls`` through the section names ``parents``."""
+    for name in parents:
+        annotation = _field_types(cls).get(name)
+        if not dataclasses.is_dataclass(annotation):
+            return None
+        cls = annotation
+    return cls
+
+
+class Parameters:
+    """Base of the parameter dataclasses: a typed, validated ``replace``.
+
+    ``RENAMED`` maps a former key of the section to the message that names its successor;
+    a case file or ``--set`` that still uses it is refused with that message.
+    """
+
+    RENAMED: typing.ClassVar[dict[str, str]] = {}
+
+    def replace(self, **changes: Any) -> Any:
+        """A copy with ``changes``, checked like a case file (type, range, choices and the
+        section's own rules). Values are in the internal units (mm, N, s, t, rad); a
+        section is replaced by an instance of its class, e.g.
+        ``case.replace(solver=case.solver.replace(step_size=1e-3))``.
+
+        Raises
+        ------
+        ParameterError
+            If a name is unknown or a value is of the wrong type or out of range.
+        """
+        section = type(self).__name__
+        fields = {f.name: f for f in dataclasses.fields(self)}
+        types = _field_types(type(self))
+        for name, value in changes.items():
+            key = f"{section}.{name}"
+            if name in self.RENAMED:
+                raise ParameterError(f"{key}: {self.RENAMED[name]}")
+            if name not in fields:
+                raise ParameterError(f"{key}: unknown; known: {', '.join(sorted(fields))}")
+            _check_value(key, value, fields[name].metadata, types[name])
+        instance = dataclasses.replace(self, **changes)
+        check = getattr(instance, "check", None)
+        if check is not None:
+            try:
+                check()
+            except ValueError as err:
+                raise ParameterError(f"{section}: {err}") from None
+        return instance
+
+
+def _check_value(key: str, value: Any, meta: dict, annotation: Any) -> None:
+    """Check a value given in the internal unit (:meth:`Parameters.replace`)."""
+    entry_type = _nested_entry_type(annotation)
+    if dataclasses.is_dataclass(annotation) or entry_type is not None:
+        wanted = annotation if entry_type is None else entry_type
+        items = [value] if entry_type is None else value
+        if (entry_type is not None and not isinstance(value, tuple)) or not all(
+                isinstance(item, wanted) for item in items):
+            shape = wanted.__name__ if entry_type is None else f"a tuple of {wanted.__name__}"
+            raise ParameterError(f"{key}: expected {shape}, got {value!r}")
+        return
+    if annotation is bool or meta["unit"] == "text":
+        _read_scalar(key, value, meta, annotation)
+        return
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        raise ParameterError(f"{key}: expected a number in {meta['unit']}, got {value!r}")
+    if annotation is int and not isinstance(value, int):
+        raise ParameterError(f"{key}: expected a whole number, got {value!r}")
+    if not math.isfinite(value):
+        raise ParameterError(f"{key}: {value!r} is not a finite number")
+    _check_range(key, value, repr(value), meta)

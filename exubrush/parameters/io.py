@@ -1,4 +1,8 @@
-"""Load a case by name or from a TOML file, with ``KEY=VALUE`` overrides."""
+"""Load a case by name or from a TOML file, with ``KEY=VALUE`` overrides.
+
+Only the parameters are read and checked here; what needs the physics (the bristles'
+reach, the slide CSV's content) is checked by :func:`exubrush.prepared.prepare`.
+"""
 
 from __future__ import annotations
 
@@ -6,8 +10,6 @@ import tomllib
 from dataclasses import replace
 from pathlib import Path
 
-from exubrush.models.geometry import head_bristles
-from exubrush.motion import read_slide_csv, start_height
 from exubrush.parameters.case import BUILT_IN_CASES, Case
 from exubrush.parameters.fields import (
     ParameterError,
@@ -45,21 +47,13 @@ def load_case(case: str, overrides: list[str] | tuple[str, ...] = ()) -> Case:
     built = build(Case, data)
     if built.motion.profile == "csv":
         folder = Path(case).parent if case.endswith(".toml") else None
-        built = _with_checked_slide_csv(built, folder)
-    try:
-        start_height(built, head_bristles(built.head))
-    except ValueError as err:
-        raise ParameterError(str(err)) from None
+        built = _with_resolved_slide_csv(built, folder)
     return built
 
 
-def _with_checked_slide_csv(case: Case, case_folder: Path | None) -> Case:
-    """Resolve ``motion.csv_file`` (relative to the case file) and read it once to check it."""
+def _with_resolved_slide_csv(case: Case, case_folder: Path | None) -> Case:
+    """Resolve ``motion.csv_file`` relative to the case file, as an absolute path."""
     path = Path(case.motion.csv_file).expanduser()
     if not path.is_absolute() and case_folder is not None:
         path = case_folder / path
-    try:
-        read_slide_csv(path)
-    except ValueError as err:
-        raise ParameterError(f"motion.csv_file: {err}") from None
     return replace(case, motion=replace(case.motion, csv_file=str(path.resolve())))

@@ -14,7 +14,7 @@ import exudyn as exu
 import exudyn.itemInterface as eii
 import numpy as np
 
-from exubrush.solver import quiet
+from exubrush.solver import static_settings
 
 
 def tip_position(length: float, bending: float, axial: float, shear: float,
@@ -61,15 +61,8 @@ def tip_position(length: float, bending: float, axial: float, shear: float,
     tip = mbs.AddMarker(eii.MarkerNodeRigid(nodeNumber=nodes[-1]))
     mbs.AddLoad(eii.LoadForceVector(markerNumber=tip, loadVector=[force[0], force[1], 0.0]))
     mbs.Assemble()
-    settings = quiet(exu.SimulationSettings())
-    settings.staticSolver.numberOfLoadSteps = load_steps
-    settings.staticSolver.newton.maxIterations = 50
-    # tighter tolerances than these make Exudyn's static Newton solve fail (measured)
-    settings.staticSolver.newton.relativeTolerance = 1e-8
-    settings.staticSolver.newton.absoluteTolerance = 1e-10
-    settings.linearSolver.solverType = exu.LinearSolverType.EigenSparse
     try:
-        mbs.SolveStatic(settings)
+        mbs.SolveStatic(static_settings(load_steps, "EigenSparse"))
     except exu.SolverError as err:
         raise RuntimeError(f"geometrically exact beam: static solve failed ({err})") from None
     return np.asarray(mbs.GetNodeOutput(nodes[-1], exu.OutputVariableType.Position))[:2]

@@ -2,7 +2,7 @@
 
 The elastica neglects shear and stretching, so the bristle's axial and shear stiffness are
 raised (area x 1e3): that leaves a shear/stretch effect of ~1e-5 of the tip deflection
-(SPEC.md §3: 1.2-2.1 % at the real area), far below the tolerances tested here.
+(the paper: 1.2-2.1 % at the real area), far below the tolerances tested here.
 """
 
 import dataclasses

@@ -52,7 +52,7 @@ def test_builtin_contact_blends_friction_in_for_prb_then_slides_at_mu_d():
     # Exudyn's built-in contact a step hook does it (tested on its own in
     # test_contact_connector.py). Without the hook μ would stay 0; steady sliding is at μ_d
     results = simulate(load_case("orthogonal", [*SMALL_HEAD, "model.kind='prb'",
-                                                "solver.user_functions='builtin'"]),
+                                                "contact.backend='exudyn-builtin'"]),
                        progress=False, workers=1)
     assert results.metadata["completed"], results.metadata["message"]
     late = results.time > results.time[-1] - 0.3

@@ -37,11 +37,23 @@ def test_progress_bar_reaches_the_end(cli, tmp_path):
     assert "TqdmWarning" not in done.stderr  # reports summing past the total by round-off
 
 
+@pytest.mark.slow
 def test_case_prints_toml_that_runs_back(cli, tmp_path):
-    done = cli("case", "orthogonal")
-    assert done.returncode == 0
+    short = ["--set", "head.rows=1", "--set", "head.columns=2", "--set", "model.segments=2",
+             "--set", "motion.periods=0.05"]
+    done = cli("case", "orthogonal", *short)
+    assert done.returncode == 0, done.stderr
     data = tomllib.loads(done.stdout)
     assert data["head"]["material"]["youngs_modulus"] == "7.5 MPa"
+    assert data["solver"]["modified_newton"] is True  # a real boolean, not "yes"
+    printed = tmp_path / "printed.toml"
+    printed.write_text(done.stdout)
+    from_file = cli("run", str(printed), "--quiet", "--out", str(tmp_path / "file"))
+    built_in = cli("run", "orthogonal", *short, "--quiet", "--out", str(tmp_path / "built-in"))
+    assert from_file.returncode == 0 and built_in.returncode == 0, from_file.stderr
+    # the printed case is the built-in one: the same forces, byte for byte
+    assert ((tmp_path / "file" / "forces.csv").read_bytes()
+            == (tmp_path / "built-in" / "forces.csv").read_bytes())
 
 
 @pytest.mark.parametrize("args, message", [
@@ -52,6 +64,8 @@ def test_case_prints_toml_that_runs_back(cli, tmp_path):
     (["run", "orthogonal", "--model", "fem"], "'fem' is not one of"),
     (["run", "orthogonal", "--set", "motion.interaction_distance='9 mm'"], "no bristle"),
     (["case", "missing.toml"], "case file 'missing.toml' does not exist"),
+    (["run", "orthogonal", "--set", "solver.user_functions=builtin"],
+     "renamed contact.backend"),
 ])
 def test_user_mistakes_give_one_line_and_exit_2(cli, args, message):
     done = cli(*args)

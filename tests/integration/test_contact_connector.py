@@ -13,7 +13,8 @@ from exubrush.contact.exudyn_contact import (
     builtin_friction_blend,
     contact_user_function,
 )
-from exubrush.contact.laws import ContactLaw, builtin_contact_parameters, sphere_plane_force
+from exubrush.contact.laws import builtin_contact_parameters, sphere_plane_force
+from exubrush.parameters.case import ContactLaw
 
 LAW = ContactLaw()
 RADIUS = 0.4
@@ -52,7 +53,7 @@ def _solve(mbs, end_time, steps):
 
 def _connector_load(backend, centre, velocity, omega):
     SC, mbs, body, plane = _sphere_above_plane(centre, velocity, omega)
-    function = contact_user_function(mbs, LAW, RADIUS, backend)
+    function = contact_user_function(mbs, LAW.replace(backend=backend), RADIUS)
     connector = add_tip_contact(mbs, plane, body["bodyNumber"], function)
     mbs.Assemble()
     force = mbs.GetObjectOutput(connector, exu.OutputVariableType.ForceLocal)
@@ -62,8 +63,8 @@ def _connector_load(backend, centre, velocity, omega):
 
 @pytest.mark.parametrize("state", STATES)
 def test_symbolic_and_python_user_functions_agree(state):
-    symbolic = _connector_load("symbolic", *state)
-    python = _connector_load("python", *state)
+    symbolic = _connector_load("paper-symbolic", *state)
+    python = _connector_load("paper-python", *state)
     # same double-precision operations in C++ and Python: agreement to round-off
     np.testing.assert_allclose(symbolic, python, rtol=1e-12, atol=1e-15)
 
@@ -73,7 +74,7 @@ def test_connector_load_is_minus_the_law(state):
     # Exudyn applies minus the returned load to the tip body (spring convention), so the
     # connector's output is minus the force the plane puts on the sphere
     expected = -np.array(sphere_plane_force(LAW, RADIUS, *state))
-    np.testing.assert_allclose(_connector_load("symbolic", *state), expected, rtol=1e-12,
+    np.testing.assert_allclose(_connector_load("paper-symbolic", *state), expected, rtol=1e-12,
                                atol=1e-15)
 
 
@@ -86,7 +87,8 @@ def test_penetrating_sphere_is_pushed_up():
 
 
 def test_friction_window_blends_friction_in():
-    function = contact_user_function(None, LAW, RADIUS, "python", friction_window=(1.0, 1.2))
+    function = contact_user_function(None, LAW.replace(backend="paper-python"), RADIUS,
+                                     friction_window=(1.0, 1.2))
     state = dict(displacement=[0, 0, 0.38], rotation=[0, 0, 0], velocity=[3.0, 0, 0],
                  angularVelocity=[0, 0, 0], stiffness=0, damping=0, rotJ0=0, rotJ1=0, offset=0)
     before, during, after = (function(None, t, 0, **state) for t in (0.5, 1.1, 2.0))

@@ -3,11 +3,13 @@
 import json
 
 import numpy as np
+import pytest
 from PIL import Image
 
 from exubrush.frames import load_shapes
 
 
+@pytest.mark.slow
 def test_frames_and_gif_of_two_models(two_model_runs, cli, tmp_path):
     runs = two_model_runs
     done = cli("frames", str(runs / "dfm"), str(runs / "prb"), "--times", "0,1.5",
@@ -21,6 +23,7 @@ def test_frames_and_gif_of_two_models(two_model_runs, cli, tmp_path):
         assert gif.n_frames == 5
 
 
+@pytest.mark.slow
 def test_prb_drawing_puts_the_pivot_on_the_stub(two_model_runs):
     runs = two_model_runs
     shapes = load_shapes(runs / "prb")
@@ -38,6 +41,7 @@ def test_prb_drawing_puts_the_pivot_on_the_stub(two_model_runs):
     np.testing.assert_allclose(link, gamma * 5.0, atol=3e-4)
 
 
+@pytest.mark.slow
 def test_frames_refuse_times_outside_the_run(two_model_runs, cli, tmp_path):
     runs = two_model_runs
     done = cli("frames", str(runs / "dfm"), "--times", "99", "--out", str(tmp_path))

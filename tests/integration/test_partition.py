@@ -27,7 +27,7 @@ def test_per_bristle_and_coupled_solves_agree_in_steady_sliding():
 
 def test_two_threads_solve_a_coupled_head_with_builtin_contact_as_one_does():
     overrides = ["head.rows=2", "head.columns=2", "motion.periods=0.12",
-                 "solver.partition='coupled'", "solver.user_functions='builtin'"]
+                 "solver.partition='coupled'", "contact.backend='exudyn-builtin'"]
     one = simulate(load_case("orthogonal", overrides), progress=False)
     two = simulate(load_case("orthogonal", [*overrides, "solver.threads=2"]), progress=False)
     assert two.metadata["status"] == "completed", two.metadata["message"]

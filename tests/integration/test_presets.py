@@ -12,6 +12,8 @@ from exubrush.parameters.io import load_case
 from exubrush.presets import PRESETS, preset_overrides
 from exubrush.simulation import simulate
 
+pytestmark = pytest.mark.slow  # a DFM N = 24 reference and three preset runs
+
 SMALL_HEAD = ["head.rows=1", "head.columns=2", "motion.periods=1"]
 REFERENCE = ["model.segments=24", "solver.step_size='0.25 ms'",
              "solver.relative_tolerance=1e-8"]
@@ -43,7 +45,7 @@ def test_preset_flat_zone_forces_within_the_stated_error(reference, name):
 def test_builtin_contact_keeps_the_fast_presets_flat_zone_error(reference):
     # in steady sliding the built-in contact's fit is the law (same k δ^m1, μ = μ_d; its
     # damping is negligible), so only the solver settings' error should remain
-    overrides = [*preset_overrides("fast"), "solver.user_functions='builtin'"]
+    overrides = [*preset_overrides("fast"), "contact.backend='exudyn-builtin'"]
     largest = _largest_flat_difference(reference, overrides)
     assert abs(largest["normal_force"]) <= PRESETS["fast"].flat_error
     assert abs(largest["tangential_force"]) <= PRESETS["fast"].flat_error

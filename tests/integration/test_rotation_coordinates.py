@@ -7,8 +7,10 @@ import pytest
 from exubrush.parameters.io import load_case
 from exubrush.simulation import simulate
 
+pytestmark = pytest.mark.slow  # two models, two node types, each a short run
+
 SMALL_RUN = ["head.rows=1", "head.columns=2", "motion.periods=0.5",
-             "output.solution_file='yes'"]
+             "output.solution_file=true"]
 
 
 @pytest.mark.parametrize("model", ["dfm", "prb"])

@@ -54,6 +54,7 @@ def uninterrupted(cli, tmp_path_factory):
     return _read_forces(out / "forces.csv")
 
 
+@pytest.mark.slow
 def test_sigterm_keeps_complete_marked_results_and_the_rerun_resumes(cli, tmp_path, uninterrupted):
     out = tmp_path / "run"
     process = _start(out)
@@ -78,6 +79,7 @@ def test_sigterm_keeps_complete_marked_results_and_the_rerun_resumes(cli, tmp_pa
     np.testing.assert_array_equal(_read_forces(out / "forces.csv"), uninterrupted)
 
 
+@pytest.mark.slow
 def test_sigkill_leaves_no_half_written_file_and_the_rerun_resumes(cli, tmp_path, uninterrupted):
     out = tmp_path / "run"
     process = _start(out)
@@ -94,6 +96,7 @@ def test_sigkill_leaves_no_half_written_file_and_the_rerun_resumes(cli, tmp_path
     np.testing.assert_array_equal(_read_forces(out / "forces.csv"), uninterrupted)
 
 
+@pytest.mark.slow
 def test_existing_results_are_never_mixed(cli, tmp_path):
     out = tmp_path / "run"
     first = cli(*_small("0.02"), "--out", str(out))
@@ -131,6 +134,7 @@ def test_a_failed_solve_keeps_its_partial_results_with_the_reason(cli, tmp_path)
     assert np.all(np.isfinite(forces[:, [0, 1, 3, 4]]))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("signal_number", [signal.SIGINT, signal.SIGTERM])
 def test_a_single_process_run_stops_cleanly_on_ctrl_c_or_kill(tmp_path, signal_number):
     out = tmp_path / "run"
@@ -153,11 +157,33 @@ def test_a_single_process_run_stops_cleanly_on_ctrl_c_or_kill(tmp_path, signal_n
 def test_a_resumed_group_keeps_the_coordinates_for_the_viewer(tmp_path):
     from exubrush.parameters.io import load_case
     from exubrush.rundir import RunDirectory
+    from exubrush.solve import GroupSolution, SolverStatistics
 
-    case = load_case("orthogonal", ["output.solution_file='yes'"])
-    output = {"time": np.arange(3.0), "reaction": np.zeros((3, 3)),
-              "nodes": np.zeros((3, 1, 6, 3)), "coordinates": np.arange(12.0).reshape(3, 4),
-              "completed": True, "message": ""}
-    RunDirectory(tmp_path, case).keep(0, output)
+    case = load_case("orthogonal", ["output.solution_file=true"])
+    solution = GroupSolution(
+        time=np.arange(3.0), reaction=np.zeros((3, 3)), nodes=np.zeros((3, 1, 6, 3)),
+        coordinates=np.arange(12.0).reshape(3, 4), statistics=SolverStatistics(steps=7),
+        completed=True, message="", wall_time=0.5, contacts=1, handle_mass=1e-6)
+    RunDirectory(tmp_path, case).keep(0, solution)
     stored = RunDirectory(tmp_path, case).stored_groups()[0]
-    np.testing.assert_array_equal(stored["coordinates"], output["coordinates"])
+    np.testing.assert_array_equal(stored.coordinates, solution.coordinates)
+    assert stored.statistics == solution.statistics
+    assert (stored.wall_time, stored.contacts, stored.handle_mass) == (0.5, 1, 1e-6)
+
+
+def test_a_checkpoint_of_another_exubrush_version_is_refused(tmp_path):
+    from exubrush.parameters.io import load_case
+    from exubrush.rundir import CODE_FILE, RunDirectory, RunDirectoryError
+
+    case = load_case("orthogonal")
+    first = RunDirectory(tmp_path, case)
+    code = json.loads((first.checkpoint / CODE_FILE).read_text())
+    assert code["exubrush"] == first.code["exubrush"]
+    RunDirectory(tmp_path, case)  # the same code resumes
+    (first.checkpoint / CODE_FILE).write_text(json.dumps({**code, "exubrush": "0.1.9"}))
+    with pytest.raises(RunDirectoryError, match="written by exubrush 0.1.9.*--overwrite"):
+        RunDirectory(tmp_path, case)
+    (first.checkpoint / CODE_FILE).unlink()  # a checkpoint from before versions were kept
+    with pytest.raises(RunDirectoryError, match="older than 0.2.0"):
+        RunDirectory(tmp_path, case)
+    RunDirectory(tmp_path, case, overwrite=True)  # starts afresh

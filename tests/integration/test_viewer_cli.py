@@ -11,9 +11,11 @@ import pytest
 from exudyn.utilities import LoadSolutionFile, SetSolutionState
 
 from exubrush.results import read_results
-from exubrush.viewer import SOLUTION_FILE, head_coordinates, viewer_scene
+from exubrush.solution_files import SOLUTION_FILE, head_coordinates
+from exubrush.viewer import viewer_scene
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("model", ["dfm", "prb"])
 def test_the_solution_file_replays_the_run(two_model_runs, cli, model):
     directory = two_model_runs / model
@@ -63,7 +65,7 @@ def test_groups_join_into_the_head_once_with_its_handle():
 
 @pytest.mark.parametrize("rows", [0, 1, 3])
 def test_a_solution_file_of_any_length_reads_back(tmp_path, rows):
-    from exubrush.viewer import read_coordinate_file, write_solution_file
+    from exubrush.solution_files import read_coordinate_file, write_solution_file
 
     written = np.arange(8.0 * rows).reshape(rows, 8)
     write_solution_file(tmp_path / "solution.txt", written, "test")

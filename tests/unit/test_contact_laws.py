@@ -1,4 +1,4 @@
-"""Contact and friction laws against their formulas (SPEC.md §4)."""
+"""Contact and friction laws against their formulas (the paper's eq. 14 and its friction law)."""
 
 import math
 
@@ -6,12 +6,12 @@ import numpy as np
 import pytest
 
 from exubrush.contact.laws import (
-    ContactLaw,
     builtin_contact_parameters,
     friction_coefficient,
     normal_force,
     sphere_plane_force,
 )
+from exubrush.parameters.case import ContactLaw
 
 LAW = ContactLaw()  # paper table 2
 

@@ -1,4 +1,4 @@
-"""Howell's PRB parameters (SPEC.md §2)."""
+"""Howell's PRB parameters (Howell 2001, table 5.1)."""
 
 import pytest
 

@@ -1,25 +1,68 @@
-"""Howell's γ(n) and K_Θ(n) fitted from the project's own elastica, against his table."""
+"""Howell's γ(n) and K_Θ(n) fitted from the project's own elastica, against his table.
+
+Each fit solves 300 exact elasticas (about 4 s); the whole table is in the slow tier, the
+fast tier fits n = 0 (and the load ratios the other tests need). Fits are cached per
+process (functools.lru_cache), so a test that repeats a load ratio costs nothing.
+
+What the fit should reach, and why:
+- γ: Howell's criterion evaluated on an exact elastica must give Howell's γ. The table has
+  4 digits and the γ search grid is 2e-4, so |Δγ| ≤ 0.003 (issue target; measured ≤ 2e-4).
+- K_Θ: by its definition here, the least-squares slope (through the origin) of the exact
+  perpendicular load index against Θ over the fitted range. Howell averaged differently,
+  so his values are matched only where the load path is nearly linear in Θ: at n = 0,
+  within 1 % (measured +0.7 %). For n > 0 the fitted slope lies above his and the gap grows
+  with n (measured +15 % at n = 10): asserted as that trend, not as a band.
+"""
 
 import numpy as np
 import pytest
 
 from exubrush.models.howell import HOWELL_TABLE
+from exubrush.reference import howell_fit
 from exubrush.reference.howell_fit import fit_prb_parameters
 
 
-@pytest.mark.parametrize("n, gamma_table, k_table", HOWELL_TABLE.tolist())
-def test_fitted_gamma_matches_howells_table(n, gamma_table, k_table):
+def _load_residual(n: float, k_theta: float) -> float:
+    """Σ (K_Θ Θ - exact perpendicular load index)² over the fitted range at ``n``."""
     fit = fit_prb_parameters(n)
-    # issue #3 target 0.003; the table has 4 digits and our γ grid is 2e-4 (measured ≤ 2e-4)
+    alphas, tips = howell_fit.exact_tip_path(n)
+    theta = howell_fit._pseudo_angle(tips, fit.gamma)
+    inside = theta <= fit.angle_range
+    perpendicular = (alphas * np.sin(howell_fit._load_angle(n))
+                     * (np.cos(theta) + n * np.sin(theta)))
+    return float(np.sum((k_theta * theta[inside] - perpendicular[inside]) ** 2))
+
+
+def _check_against_table(n, gamma_table):
+    fit = fit_prb_parameters(n)
     assert fit.gamma == pytest.approx(gamma_table, abs=0.003)
-    # K_Θ is a least-squares slope over the fitted range; Howell's averaging differs, and
-    # the fitted K_Θ drifts above his with n (measured: +0.7 % at n = 0, +15 % at n = 10)
-    assert 0.95 * k_table < fit.stiffness_coefficient < 1.2 * k_table
+    # least squares: a slope 1 % off either way fits the exact load worse
+    best = _load_residual(n, fit.stiffness_coefficient)
+    for factor in (0.99, 1.01):
+        assert best < _load_residual(n, factor * fit.stiffness_coefficient)
+    return fit
 
 
-def test_pure_transverse_load_range_is_howells_64_degrees():
+def test_pure_transverse_load_matches_howell():
+    n, gamma_table, k_table = HOWELL_TABLE[0]
+    fit = _check_against_table(float(n), gamma_table)
+    assert fit.stiffness_coefficient == pytest.approx(k_table, rel=0.01)
     # Howell (2001): for n = 0 the model stays within 0.5 % up to Θ = 64.3°
-    assert np.degrees(fit_prb_parameters(0.0).angle_range) == pytest.approx(64.3, abs=0.3)
+    assert np.degrees(fit.angle_range) == pytest.approx(64.3, abs=0.3)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("n, gamma_table, k_table", HOWELL_TABLE[1:].tolist())
+def test_fitted_gamma_matches_howells_table(n, gamma_table, k_table):
+    _check_against_table(n, gamma_table)
+
+
+@pytest.mark.slow
+def test_fitted_k_theta_drifts_above_howells_with_n():
+    ratios = [fit_prb_parameters(float(n)).stiffness_coefficient / k
+              for n, _, k in HOWELL_TABLE]
+    assert ratios[0] == pytest.approx(1.0, abs=0.01)
+    assert np.all(np.diff(ratios) > 0.0), ratios
 
 
 def test_tension_is_fitted_and_out_of_range_refused():
@@ -28,15 +71,16 @@ def test_tension_is_fitted_and_out_of_range_refused():
         fit_prb_parameters(11.0)
 
 
+@pytest.mark.slow
 def test_a_case_can_take_its_prb_parameters_from_the_fit():
     from exubrush.parameters.io import load_case
-    from exubrush.scene import prb_parameters
+    from exubrush.prepared import prb_parameters
 
     fitted = load_case("parallel", ["model.kind='prb'", "model.prb_parameters='fitted'"])
     table = load_case("parallel", ["model.kind='prb'"])
     assert fitted.load_ratio() == pytest.approx(1 / 0.76, rel=1e-15)
     # the same n: γ agrees with the interpolated table to the fit's accuracy (0.003)
-    assert prb_parameters(fitted)[0] == pytest.approx(prb_parameters(table)[0], abs=0.003)
+    assert prb_parameters(fitted).gamma == pytest.approx(prb_parameters(table).gamma, abs=0.003)
     other = load_case("parallel", ["model.kind='prb'", "model.prb_parameters='fitted'",
                                    "model.prb_load_ratio='-1'"])
-    assert prb_parameters(other)[0] == pytest.approx(fit_prb_parameters(-1.0).gamma)
+    assert prb_parameters(other).gamma == pytest.approx(fit_prb_parameters(-1.0).gamma)

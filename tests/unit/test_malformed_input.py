@@ -1,5 +1,8 @@
 """Malformed input is refused before anything is built, with one line naming what is wrong.
 
+Each input goes the way the command line takes it: parameters read (load_case), then the
+case prepared (prepare: bristles' reach, slide CSV), and nothing solved.
+
 Each row is (kind, input, part of the message it must produce). Kinds: ``set`` --set
 overrides on the orthogonal case; ``toml`` the text of a case file; ``csv`` the text of a
 slide-profile CSV used by the case; ``case`` the CASE argument itself.
@@ -9,6 +12,7 @@ import pytest
 
 from exubrush.parameters.fields import ParameterError
 from exubrush.parameters.io import load_case
+from exubrush.prepared import prepare
 
 MALFORMED = [
     # lengths, moduli and other positive quantities
@@ -39,7 +43,18 @@ MALFORMED = [
     ("set", ["solver.threads=0"], "solver.threads: 0 must be >= 1"),
     ("set", ["solver.threads=2"], "threads = 2 needs partition 'coupled'"),
     ("set", ["solver.threads=2", "solver.partition='coupled'"],
-     "threads = 2 needs user_functions 'builtin'"),
+     "solver.threads = 2 needs contact.backend 'exudyn-builtin'"),
+    # renamed keys and real booleans
+    ("set", ["solver.user_functions='builtin'"],
+     "--set solver.user_functions: renamed contact.backend: 'symbolic' is now 'paper-symbolic'"),
+    ("toml", "[solver]\nuser_functions = 'python'\n",
+     "solver.user_functions: renamed contact.backend"),
+    ("set", ["solver.modified_newton='yes'"],
+     "solver.modified_newton: expected true or false, got 'yes'"),
+    ("toml", "[output]\nsolution_file = 1\n", "output.solution_file: expected true or false"),
+    ("set", ["contact.backend='builtin'"],
+     "contact.backend: 'builtin' is not one of 'paper-symbolic', 'paper-python', "
+     "'exudyn-builtin'"),
     # units
     ("set", ["head.bristle.length=5"], "head.bristle.length: 5 has no unit"),
     ("set", ["contact.damping='0.2'"], "contact.damping: '0.2' has no unit"),
@@ -101,20 +116,17 @@ MALFORMED = [
 
 def _load(kind, given, tmp_path):
     if kind == "set":
-        return load_case("orthogonal", given)
+        return prepare(load_case("orthogonal", given))
     if kind == "toml":
         path = tmp_path / "case.toml"
         path.write_text(given)
-        return load_case(str(path))
+        return prepare(load_case(str(path)))
     if kind == "csv":
         path = tmp_path / "slide.csv"
         path.write_text(given)
-        return load_case("orthogonal", ["motion.profile='csv'", f"motion.csv_file='{path}'"])
-    return load_case(given)
-
-
-def test_the_table_is_large_enough():
-    assert len(MALFORMED) >= 30
+        return prepare(load_case("orthogonal", ["motion.profile='csv'",
+                                                f"motion.csv_file='{path}'"]))
+    return prepare(load_case(given))
 
 
 @pytest.mark.parametrize("kind, given, message", MALFORMED)

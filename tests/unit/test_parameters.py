@@ -65,3 +65,32 @@ def test_list_layout(tmp_path):
 def test_dotted_keys_cover_nested_tables():
     keys = dotted_keys(Case)
     assert "head.material.youngs_modulus" in keys and "contact.stiffness" in keys
+
+
+def test_replace_gives_a_validated_copy():
+    case = orthogonal_case()
+    changed = case.replace(solver=case.solver.replace(step_size=1e-3, modified_newton=False))
+    assert changed.solver.step_size == 1e-3 and changed.solver.modified_newton is False
+    assert case.solver.step_size == 2e-3  # the original is untouched (frozen)
+    assert changed.head == case.head
+
+
+@pytest.mark.parametrize("change, message", [
+    (lambda c: c.solver.replace(step_size=-1.0), "Solver.step_size: -1.0 must be > 0 ms"),
+    (lambda c: c.solver.replace(modified_newton="yes"), "expected true or false, got 'yes'"),
+    (lambda c: c.solver.replace(newton_iterations=12.5), "expected a whole number"),
+    (lambda c: c.solver.replace(step_size="2 ms"), "expected a number in s"),
+    (lambda c: c.solver.replace(minimum_step_size=1.0), "must not exceed step_size"),
+    (lambda c: c.solver.replace(user_functions="builtin"), "renamed contact.backend"),
+    (lambda c: c.solver.replace(stepsize=1e-3), "Solver.stepsize: unknown"),
+    (lambda c: c.contact.replace(backend="fast"), "'fast' is not one of"),
+    (lambda c: c.replace(solver=c.head), "expected Solver, got Head"),
+    (lambda c: c.head.replace(bristles=[]), "expected a tuple of BristleEntry"),
+    (lambda c: c.replace(solver=c.solver.replace(threads=2, partition="coupled")),
+     "needs contact.backend 'exudyn-builtin'"),
+])
+def test_replace_refuses_what_a_case_file_would(change, message):
+    from exubrush.parameters.fields import ParameterError
+
+    with pytest.raises(ParameterError, match=message.replace("(", r"\(").replace(".", r"\.")):
+        change(orthogonal_case())

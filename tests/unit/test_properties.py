@@ -6,7 +6,8 @@ import math
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from exubrush.contact.laws import ContactLaw, friction_coefficient, sphere_plane_force
+from exubrush.contact.laws import friction_coefficient, sphere_plane_force
+from exubrush.parameters.case import ContactLaw
 from exubrush.parameters.fields import ParameterError
 from exubrush.parameters.io import load_case
 from exubrush.units import UnitError

@@ -7,7 +7,7 @@ from exubrush.solver import dynamic_settings
 
 
 def test_threads_and_linear_solver_reach_exudyn():
-    solver = Solver(partition="coupled", user_functions="builtin", threads=2)
+    solver = Solver(partition="coupled", threads=2)
     settings = dynamic_settings(solver, end_time=1.0, output_interval=0.01)
     assert settings.parallel.numberOfThreads == 2
     # auto: a coupled head is sparse

@@ -1,4 +1,4 @@
-"""Timoshenko and PRB stiffness against their formulas (SPEC.md §2-3)."""
+"""Timoshenko and PRB stiffness against their formulas (paper eq. 9; Howell's PRB springs)."""
 
 import numpy as np
 import pytest

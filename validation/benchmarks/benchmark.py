@@ -54,18 +54,18 @@ REFERENCE = ["model.kind='dfm'", "model.segments=24", "solver.step_size='0.25 ms
 BASELINE = ["solver.step_size='1 ms'", "solver.relative_tolerance=1e-8"]
 DFM6 = ["model.kind='dfm'", "model.segments=6"]
 LOOSE = ["solver.relative_tolerance=1e-6"]
-BUILTIN = "solver.user_functions='builtin'"
+BUILTIN = "contact.backend='exudyn-builtin'"
 VARIANTS = {
     "PRB": ["model.kind='prb'"],
     **{f"DFM N={n}": ["model.kind='dfm'", f"model.segments={n}"] for n in (2, 3, 4, 6, 8, 12)},
     **{f"DFM N=6, step {h} ms": [*DFM6, f"solver.step_size='{h} ms'"] for h in (0.5, 2, 5)},
     "DFM N=6, Newton rtol 1e-6": [*DFM6, *LOOSE],
-    "DFM N=6, full Newton": [*DFM6, "solver.modified_newton='no'"],
+    "DFM N=6, full Newton": [*DFM6, "solver.modified_newton=false"],
     **{f"DFM N={n}, step {h} ms, rtol 1e-6": ["model.kind='dfm'", f"model.segments={n}",
                                                f"solver.step_size='{h} ms'", *LOOSE]
        for n, h in ((4, 5), (6, 2), (6, 5), (6, 10), (8, 5), (12, 5))},
     "PRB, step 5 ms, rtol 1e-6": ["model.kind='prb'", "solver.step_size='5 ms'", *LOOSE],
-    "DFM N=6, Python user functions": [*DFM6, "solver.user_functions='python'"],
+    "DFM N=6, Python user functions": [*DFM6, "contact.backend='paper-python'"],
     "DFM N=6, EXUdense": [*DFM6, "solver.linear_solver='EXUdense'"],
     "DFM N=6, 25 Newton iterations": [*DFM6, "solver.newton_iterations=25"],
     "DFM N=6, rotation vector": [*DFM6, "model.rotation='rotation-vector'"],

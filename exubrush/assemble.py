@@ -1,0 +1,164 @@
+"""Turn the group solutions of a run into its :class:`~exubrush.results.Results`.
+
+The head force is the sum of the groups' forces with the handles' inertia removed
+(:func:`exubrush.kinematics.head_force`); shapes gain their roots; the run record
+(``Results.metadata``) says what was run, by which code, how it went and why it stopped.
+"""
+
+from __future__ import annotations
+
+import functools
+import platform
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from exubrush.kinematics import handle_history, head_force
+from exubrush.parameters.fields import to_plain
+from exubrush.prepared import PreparedCase
+from exubrush.provenance import code_identity
+from exubrush.results import Results
+from exubrush.solution_files import head_coordinates
+from exubrush.solve import GroupSolution, SolverStatistics
+
+
+@dataclass(frozen=True)
+class RunFacts:
+    """How a run went, besides its solutions.
+
+    Attributes
+    ----------
+    interrupted : bool
+        Stopped by Ctrl-C or SIGTERM.
+    wall_time : float
+        Wall time of the solves [s].
+    workers : int
+        Tasks that could run at once.
+    resumed : int
+        Groups read back from a checkpoint instead of solved.
+    """
+
+    interrupted: bool
+    wall_time: float
+    workers: int
+    resumed: int = 0
+
+
+def assemble_results(prepared: PreparedCase, solutions: Sequence[GroupSolution | None],
+                     facts: RunFacts) -> Results:
+    """The run's results from one solution per group (None: never started).
+
+    If a solve failed or the run was interrupted, the results hold the head force over the
+    time every group reached (nothing if a group never started), and the metadata's
+    ``status`` is "failed" or "interrupted" with the reason in ``message``.
+    """
+    case = prepared.case
+    ran = [s for s in solutions if s is not None]
+    n = min(len(s.time) for s in ran) if len(ran) == len(solutions) else 0
+    t = ran[0].time[:n] if ran else np.zeros(0)
+    position, _, acceleration = handle_history(prepared.motion, prepared.slide_axis, t)
+    force = head_force([s.reaction[:n] for s in ran] if n else [],
+                       [s.handle_mass for s in ran], acceleration)
+    handle_position = position + np.array([0.0, 0.0, prepared.start_height])
+    nodes_per_bristle = case.model.segments if case.model.kind == "dfm" else 1
+    nodes = (np.concatenate([s.nodes[:n] for s in solutions], axis=1) if n
+             else np.zeros((0, len(prepared.bristles), nodes_per_bristle, 3)))
+    completed = (not facts.interrupted and len(ran) == len(solutions)
+                 and all(s.completed for s in ran))
+    status = "completed" if completed else "interrupted" if facts.interrupted else "failed"
+    stride = max(1, round(case.output.shape_interval / case.output.interval))
+    rows = np.arange(0, n, stride)
+    roots = np.array([b.root for b in prepared.bristles])
+    shape_nodes = np.concatenate(
+        [(handle_position[rows][:, None, :] + roots[None, :, :])[:, :, None, :], nodes[rows]],
+        axis=2,
+    )
+    shape_coordinates = None
+    if case.output.solution_file and n:
+        shape_coordinates = head_coordinates([s.coordinates for s in solutions])
+    peak = float(np.max(np.abs(force[:, 2]))) if n else 0.0
+    bound = prepared.force_bound()
+    metadata = {
+        "case": case.name,
+        "model": case.model.kind,
+        "parameters": to_plain(case),
+        "derived": _derived(prepared, ran, facts),
+        "versions": {**code_identity(), "exudyn": _exudyn_version(),
+                     "python": platform.python_version()},
+        "solver_statistics": _statistics(ran),
+        "sanity": {"peak_normal_force_N": peak, "normal_force_bound_N": bound,
+                   "within_bound": peak <= bound},
+        "solver_wall_time_s_sum": sum(s.wall_time for s in ran),
+        "wall_time_s": facts.wall_time,
+        "simulated_time_s": float(t[-1]) if n else 0.0,
+        "status": status,
+        "completed": completed,
+        "message": "" if completed else stop_message(case, solutions, facts.interrupted),
+        "data_origin": "exubrush model output (simulation, not measurement)",
+    }
+    return Results(
+        time=t,
+        slider_position=np.array([prepared.motion.sliding(ti)[0] for ti in t]),
+        normal_force=-force[:, 2],
+        tangential_force=force @ prepared.slide_axis,
+        head_height=handle_position[:, 2],
+        shape_time=t[rows],
+        shape_nodes=shape_nodes,
+        shape_coordinates=shape_coordinates,
+        metadata=metadata,
+    )
+
+
+def _derived(prepared: PreparedCase, ran: list[GroupSolution], facts: RunFacts) -> dict:
+    case, motion = prepared.case, prepared.motion
+    derived = {
+        "bristles": len(prepared.bristles),
+        "contact_elements": sum(s.contacts for s in ran),
+        "partition": case.solver.partition,
+        "systems_solved": len(prepared.groups),
+        "systems_finished": sum(bool(s.completed) for s in ran),
+        "systems_resumed": facts.resumed,
+        "worker_processes": min(facts.workers, len(prepared.groups)),
+        "approach_distance_mm": motion.approach_distance,
+        "slide_start_s": motion.slide_start,
+        "end_time_s": motion.end_time,
+    }
+    if prepared.prb is not None:
+        derived["prb_gamma"] = prepared.prb.gamma
+        derived["prb_stiffness_coefficient"] = prepared.prb.stiffness_coefficient
+        if prepared.prb.load_ratio is not None:
+            derived["prb_load_ratio"] = prepared.prb.load_ratio
+    return derived
+
+
+def _statistics(ran: list[GroupSolution]) -> dict[str, int]:
+    total = functools.reduce(lambda a, b: a + b, (s.statistics for s in ran),
+                             SolverStatistics())
+    return total.__dict__.copy() if ran else {}
+
+
+def _exudyn_version() -> str:
+    import exudyn
+
+    return exudyn.__version__
+
+
+def stop_message(case, solutions: Sequence[GroupSolution | None], interrupted: bool) -> str:
+    """Why the run stopped, when, and what to change."""
+    finished = sum(1 for s in solutions if s is not None and s.completed)
+    if interrupted:
+        return (f"{finished} of {len(solutions)} bristle groups finished and are "
+                "kept: run the same command again to resume")
+    failed = [(i, s) for i, s in enumerate(solutions) if s is not None and not s.completed]
+    index, solution = min(failed, key=lambda item: len(item[1].time))
+    reached = float(solution.time[-1]) if len(solution.time) else 0.0
+    reason = solution.message or "the solver stopped before the end time"
+    if "physical bound" in reason:
+        return f"group {index} stopped at t = {reached:.6g} s: {reason}"
+    return (f"group {index} stopped at t = {reached:.6g} s ({reason}); likely cause: no "
+            f"converged step down to solver.minimum_step_size ({case.solver.minimum_step_size:g}"
+            " s), e.g. a contact too stiff for the step or a violent snap-through; try a "
+            f"smaller solver.step_size (now {case.solver.step_size:g} s), a smaller "
+            "solver.minimum_step_size, a softer contact.stiffness or more damping "
+            "(head.material.damping_time)")

@@ -1,0 +1,50 @@
+"""Running solve tasks: the executor interface and the local executors.
+
+An executor takes a prepared case and a list of :class:`SolveTask` (bristle groups), runs
+:func:`exubrush.solve.solve_group` for each wherever it likes, and hands every
+:class:`~exubrush.solve.GroupSolution` back to the caller, in the caller's process, as it
+finishes. It reports progress in simulated seconds and stops cleanly on Ctrl-C or SIGTERM:
+solves in progress return what they have, tasks not started are cancelled. The physics
+never sees which executor runs it; a distributed engine plugs in as one more
+:class:`Executor`.
+"""
+
+from __future__ import annotations
+
+from abc import ABC, abstractmethod
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
+from exubrush.prepared import PreparedCase
+from exubrush.solve import GroupSolution
+
+
+@dataclass(frozen=True)
+class SolveTask:
+    """One bristle group to solve: its index in the run and the bristles in it."""
+
+    index: int
+    selection: tuple[int, ...]
+
+
+class Executor(ABC):
+    """Runs solve tasks with progress and clean stops (see the package docstring)."""
+
+    @abstractmethod
+    def run(self, prepared: PreparedCase, tasks: Sequence[SolveTask],
+            solved: Callable[[SolveTask, GroupSolution], None],
+            advance: Callable[[float], None]) -> bool:
+        """Solve ``tasks``; call ``solved(task, solution)`` here as each one finishes and
+        ``advance(seconds)`` with the simulated time solved since the last call (summed
+        over tasks).
+
+        Returns
+        -------
+        bool
+            True if the run was interrupted (Ctrl-C or SIGTERM) before every task finished.
+        """
+
+    @property
+    @abstractmethod
+    def workers(self) -> int:
+        """How many tasks can run at once."""

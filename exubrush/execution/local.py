@@ -1,0 +1,123 @@
+"""Executors on this machine: in this process, or a pool of worker processes.
+
+Exudyn's threads do not mix with Python user functions, so parallel work uses processes
+("spawn": a fresh interpreter per worker, as on every platform). Ctrl-C reaches the whole
+process group; the parent decides: workers ignore SIGINT, and an event asks the running
+solves to stop at their next check and return what they have. A worker whose parent died
+(kill -9) exits at once instead of computing on as an orphan.
+"""
+
+from __future__ import annotations
+
+import multiprocessing
+import os
+import queue
+import signal
+import threading
+from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+
+from exubrush.execution import Executor
+from exubrush.execution.signals import signals_redirected
+from exubrush.solve import solve_group
+
+POLL = 0.2  # s between two looks at the pool and the progress queue
+
+
+class SerialExecutor(Executor):
+    """Solves the tasks one after another in this process; Ctrl-C and SIGTERM stop the
+    running solve at its next check."""
+
+    workers = 1
+
+    def run(self, prepared, tasks, solved, advance) -> bool:
+        stop = threading.Event()
+        monitor = _Monitor(stop, advance)
+        with signals_redirected(lambda *_: stop.set()):
+            for task in tasks:
+                if stop.is_set():
+                    break
+                solved(task, solve_group(prepared, task.selection, monitor))
+        return stop.is_set()
+
+
+class ProcessExecutor(Executor):
+    """Solves the tasks in ``processes`` worker processes."""
+
+    def __init__(self, processes: int):
+        self.processes = processes
+
+    @property
+    def workers(self) -> int:
+        return self.processes
+
+    def run(self, prepared, tasks, solved, advance) -> bool:
+        context = multiprocessing.get_context("spawn")
+        updates, stop = context.Queue(), context.Event()
+        interrupted = False
+        with ProcessPoolExecutor(min(self.processes, len(tasks)), mp_context=context,
+                                 initializer=_init_worker,
+                                 initargs=(updates, os.getpid(), stop)) as pool:
+            futures = {pool.submit(_solve_in_worker, prepared, task.selection): task
+                       for task in tasks}
+            pending = set(futures)
+            while pending:
+                try:
+                    done, pending = wait(pending, timeout=POLL, return_when=FIRST_COMPLETED)
+                    for future in done:
+                        if not future.cancelled():
+                            solved(futures[future], future.result())
+                    _drain(updates, advance)
+                except KeyboardInterrupt:
+                    interrupted = True
+                    stop.set()  # running solves return what they have at their next check
+                    for future in pending:
+                        future.cancel()
+        _drain(updates, advance)
+        return interrupted
+
+
+def local_executor(workers: int | None, tasks: int) -> Executor:
+    """A process pool of ``workers`` (default: every core) processes, or the serial
+    executor where one process is enough."""
+    workers = workers or os.cpu_count() or 1
+    if workers <= 1 or tasks <= 1:
+        return SerialExecutor()
+    return ProcessExecutor(workers)
+
+
+class _Monitor:
+    """A solve's monitor: progress to ``advance``, stop when ``stop`` is set, and exit at
+    once if the process that started this one is gone."""
+
+    def __init__(self, stop, advance, parent: int | None = None):
+        self.stop, self.advance_to, self.parent = stop, advance, parent
+
+    def advance(self, simulated: float) -> None:
+        self.advance_to(simulated)
+
+    def stop_requested(self) -> bool:
+        if self.parent is not None and os.getppid() != self.parent:
+            os._exit(1)  # orphaned: nobody will read the result
+        return self.stop.is_set()
+
+
+_WORKER: dict = {"monitor": None}
+
+
+def _init_worker(updates, parent: int, stop) -> None:
+    """Pool initializer: progress goes to ``updates``, ``stop`` asks for a clean stop."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    _WORKER["monitor"] = _Monitor(stop, updates.put, parent)
+
+
+def _solve_in_worker(prepared, selection):
+    return solve_group(prepared, selection, _WORKER["monitor"])
+
+
+def _drain(updates, advance) -> None:
+    """Pass the workers' progress reports on."""
+    while True:
+        try:
+            advance(updates.get_nowait())
+        except queue.Empty:
+            return

@@ -1,0 +1,32 @@
+"""Files written whole or not at all."""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from pathlib import Path
+
+
+class atomic_file:
+    """Open a temporary file beside ``path`` and rename it onto ``path`` on success.
+
+    A reader therefore sees either the complete old file, the complete new one, or none;
+    an exception inside the block removes the temporary file and leaves ``path`` as it was.
+    """
+
+    def __init__(self, path: Path, mode: str, **kwargs):
+        self.path, self.mode, self.kwargs = Path(path), mode, kwargs
+
+    def __enter__(self):
+        fd, self.temporary = tempfile.mkstemp(dir=self.path.parent, prefix=f".{self.path.name}.")
+        self.handle = os.fdopen(fd, self.mode, **self.kwargs)
+        return self.handle
+
+    def __exit__(self, exc_type, exc, tb):
+        self.handle.close()
+        if exc_type is None:
+            os.chmod(self.temporary, 0o644)
+            os.replace(self.temporary, self.path)
+        else:
+            os.unlink(self.temporary)
+        return False

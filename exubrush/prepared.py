@@ -1,0 +1,154 @@
+"""A case prepared for solving: everything the bristle solves share, computed once.
+
+:func:`prepare` resolves the head into bristles, the motion (a slide CSV is read here, once),
+the PRB parameters (a fit to the elastica takes seconds), when friction is blended in and
+the physical force bound. The result is frozen and picklable: the executor hands the same
+object to every worker, and the CLI, the viewer and the sanity check read it instead of
+recomputing. Errors that only the physics reveals (no bristle reaches the surface, an
+unreadable slide CSV) are raised here as :class:`~exubrush.parameters.fields.ParameterError`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from exubrush.kinematics import SLIDE_AXES
+from exubrush.models.geometry import BristleGeometry, can_reach, head_bristles
+from exubrush.models.howell import howell_parameters
+from exubrush.motion import HeadMotion, head_motion
+from exubrush.parameters.case import Case
+from exubrush.parameters.fields import ParameterError
+from exubrush.reference.howell_fit import fit_prb_parameters
+from exubrush.sanity import normal_force_bound, static_force_limits
+
+
+@dataclass(frozen=True)
+class PrbParameters:
+    """Pseudo-rigid-body parameters of a run.
+
+    Attributes
+    ----------
+    gamma : float
+        Characteristic radius factor γ [-].
+    stiffness_coefficient : float
+        Stiffness coefficient K_Θ [-].
+    load_ratio : float or None
+        The load ratio n they were taken at (None for explicit values).
+    """
+
+    gamma: float
+    stiffness_coefficient: float
+    load_ratio: float | None
+
+
+@dataclass(frozen=True)
+class PreparedCase:
+    """A validated case with what every solve of it shares (see module docstring).
+
+    Attributes
+    ----------
+    case : Case
+        The parameters.
+    bristles : tuple of BristleGeometry
+        Every bristle of the head, in order.
+    motion : HeadMotion
+        Approach, hold and slide of the head.
+    start_height : float
+        Height of the roots' surface above the plane at t = 0 [mm].
+    prb : PrbParameters or None
+        γ and K_Θ for the PRB model; None for DFM.
+    friction_window : (float, float) or None
+        Times [s] between which friction is blended in; None: it acts from the start.
+    force_limits : tuple of float
+        Each bristle's force straight and fully compressed [N] (exubrush.sanity).
+    groups : tuple
+        The bristle groups solved as separate Exudyn systems: tuples of bristle indices.
+    """
+
+    case: Case
+    bristles: tuple[BristleGeometry, ...]
+    motion: HeadMotion
+    start_height: float
+    prb: PrbParameters | None
+    friction_window: tuple[float, float] | None
+    force_limits: tuple[float, ...]
+    groups: tuple[tuple[int, ...], ...]
+
+    @property
+    def slide_axis(self) -> np.ndarray:
+        """Unit vector of the slide in the head frame."""
+        return SLIDE_AXES[self.case.motion.direction]
+
+    def force_bound(self, selection: tuple[int, ...] | None = None) -> float:
+        """Largest physically possible normal force [N] of the bristles ``selection``
+        (default: the whole head)."""
+        limits = self.force_limits
+        return normal_force_bound(limits if selection is None
+                                  else [limits[i] for i in selection])
+
+    @property
+    def unreachable(self) -> int:
+        """Number of bristles that can never touch the surface."""
+        distance = self.case.motion.interaction_distance
+        return sum(not can_reach(b, distance) for b in self.bristles)
+
+
+def prepare(case: Case) -> PreparedCase:
+    """Compute once what every solve of ``case`` needs (see module docstring).
+
+    Raises
+    ------
+    ParameterError
+        If no bristle can reach the surface or the slide CSV cannot be read.
+    """
+    bristles = tuple(head_bristles(case.head))
+    try:
+        motion, height = head_motion(case, bristles)
+    except ValueError as err:
+        key = "motion.csv_file: " if case.motion.profile == "csv" else ""
+        raise ParameterError(f"{key}{err}") from None
+    return PreparedCase(
+        case=case,
+        bristles=bristles,
+        motion=motion,
+        start_height=height,
+        prb=prb_parameters(case) if case.model.kind == "prb" else None,
+        friction_window=friction_window(case, motion),
+        force_limits=static_force_limits(case, bristles),
+        groups=bristle_groups(case, len(bristles)),
+    )
+
+
+def prb_parameters(case: Case) -> PrbParameters:
+    """(γ, K_Θ) for the PRB model at n = case.load_ratio(): Howell's table, fitted to the
+    exact elastica, or the explicit values (model.prb_parameters)."""
+    source = case.model.prb_parameters
+    if source == "explicit":
+        return PrbParameters(case.model.prb_gamma, case.model.prb_stiffness_coefficient, None)
+    n = case.load_ratio()
+    if source == "fitted":
+        fit = fit_prb_parameters(n)
+        return PrbParameters(fit.gamma, fit.stiffness_coefficient, n)
+    return PrbParameters(*howell_parameters(n), n)
+
+
+def friction_window(case: Case, motion: HeadMotion) -> tuple[float, float] | None:
+    """When friction is blended in, or None if it acts from the start (motion.approach_friction).
+
+    "off" switches friction on during the hold after the approach; "auto" does so for the
+    PRB model only: a straight PRB link whose tip sticks cannot buckle as a real bristle
+    does, and a measured single bristle jammed at 126 N instead of buckling at ~0.1 N.
+    """
+    mode = case.motion.approach_friction
+    if mode == "on" or (mode == "auto" and case.model.kind == "dfm"):
+        return None
+    return (motion.approach_duration, motion.slide_start)
+
+
+def bristle_groups(case: Case, count: int) -> tuple[tuple[int, ...], ...]:
+    """Bristle indices of each Exudyn system: one per bristle, or all in one (coupled)."""
+    if case.solver.partition == "coupled":
+        return (tuple(range(count)),)
+    return tuple((i,) for i in range(count))

@@ -1,0 +1,242 @@
+"""Solve one group of bristles: build its Exudyn system, step it, read it out.
+
+This is the unit of work an executor (exubrush.execution) runs, in this process, in a
+worker process or on a cluster: :func:`solve_group` takes the prepared case and the
+indices of the bristles, and returns a :class:`GroupSolution`, a typed, picklable record
+of plain arrays. It does not know where it runs: progress and stop requests go through a
+:class:`SolveMonitor` the executor provides.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import os
+import tempfile
+import time
+from dataclasses import dataclass
+from typing import Protocol
+
+import exudyn as exu
+import numpy as np
+
+from exubrush.prepared import PreparedCase
+from exubrush.sanity import beyond_bound_message
+from exubrush.scene import build_scene
+from exubrush.solution_files import read_coordinate_file
+from exubrush.solver import dynamic_settings, record_coordinates
+
+PROGRESS_STEP = 0.05  # s of simulated time between two checks (progress, stop, divergence)
+
+
+class SolveMonitor(Protocol):
+    """What a solve tells its executor, and asks it, while it runs."""
+
+    def advance(self, simulated: float) -> None:
+        """``simulated`` more seconds of this group are solved."""
+
+    def stop_requested(self) -> bool:
+        """Whether the solve should end now and return what it has (Ctrl-C, cancellation)."""
+
+
+@dataclass(frozen=True)
+class SolverStatistics:
+    """Counters of Exudyn's dynamic solver for one or more systems."""
+
+    steps: int = 0
+    newton_iterations: int = 0
+    jacobian_updates: int = 0
+    rejected_modified_newton_steps: int = 0
+
+    def __add__(self, other: SolverStatistics) -> SolverStatistics:
+        return SolverStatistics(*(a + b for a, b in zip(dataclasses.astuple(self),
+                                                        dataclasses.astuple(other), strict=True)))
+
+
+@dataclass(frozen=True)
+class GroupSolution:
+    """The outcome of solving one bristle group, on the case's output grid.
+
+    Attributes
+    ----------
+    time : ndarray (n,)
+        Multiples of ``output.interval`` up to the last sane record [s].
+    reaction : ndarray (n, 3)
+        Drive reaction: the force the handle's coordinates exert on the drive [N].
+    nodes : ndarray (n, bristles, nodes, 3)
+        Bristle node positions, head frame fixed to the surface [mm].
+    coordinates : ndarray (m, 1 + coordinates) or None
+        Rows (time [s], ODE2 coordinates) at ``output.shape_interval``, if the case keeps
+        them (``output.solution_file``).
+    statistics : SolverStatistics
+        Exudyn's step, Newton and Jacobian counts.
+    completed : bool
+        Whether the solve reached the end time.
+    message : str
+        Why it stopped early ("" if it completed).
+    wall_time : float
+        Wall time of Exudyn's solve [s].
+    contacts : int
+        Contact elements in the system.
+    handle_mass : float
+        Mass of the group's handle [t].
+    """
+
+    time: np.ndarray
+    reaction: np.ndarray
+    nodes: np.ndarray
+    coordinates: np.ndarray | None
+    statistics: SolverStatistics
+    completed: bool
+    message: str
+    wall_time: float
+    contacts: int
+    handle_mass: float
+
+    ARRAYS = ("time", "reaction", "nodes", "coordinates")
+
+    def to_arrays(self) -> dict[str, np.ndarray]:
+        """Plain arrays for ``np.savez`` (the scalars as one JSON text), read back by
+        :meth:`from_arrays`."""
+        scalars = {f.name: getattr(self, f.name) for f in dataclasses.fields(self)
+                   if f.name not in self.ARRAYS}
+        scalars["statistics"] = dataclasses.asdict(self.statistics)
+        arrays = {name: getattr(self, name) for name in self.ARRAYS
+                  if getattr(self, name) is not None}
+        return {"scalars": np.array(json.dumps(scalars)), **arrays}
+
+    @classmethod
+    def from_arrays(cls, data) -> GroupSolution:
+        """Inverse of :meth:`to_arrays` (``data``: a mapping such as an open ``.npz``)."""
+        scalars = json.loads(str(data["scalars"]))
+        scalars["statistics"] = SolverStatistics(**scalars["statistics"])
+        arrays = {name: (data[name] if name in data else None) for name in cls.ARRAYS}
+        return cls(**arrays, **scalars)
+
+
+def solve_group(prepared: PreparedCase, selection: tuple[int, ...],
+                monitor: SolveMonitor | None = None) -> GroupSolution:
+    """Solve the bristles ``selection`` of ``prepared`` as one Exudyn system.
+
+    Every :data:`PROGRESS_STEP` of simulated time the monitor hears of the progress and may
+    stop the solve, which then returns what it has, marked not completed. The state is
+    checked there for non-finite values and the normal force against the physical bound; a
+    diverged or unphysical solve stops, and no sample of it past the last sane one is
+    returned.
+    """
+    case = prepared.case
+    scene = build_scene(prepared, selection)
+    end_time = scene.motion.end_time
+    settings = dynamic_settings(case.solver, end_time, case.output.interval)
+    coordinates_file = None
+    if case.output.solution_file:
+        handle, coordinates_file = tempfile.mkstemp(prefix="exubrush-", suffix=".txt")
+        os.close(handle)
+        # at the force interval: interpolated onto the shape grid between the same records
+        # as the node positions (on_output_grid), so both say the same
+        record_coordinates(settings, coordinates_file, case.output.interval)
+    bound = prepared.force_bound(selection)
+    reported = [0.0]
+    status = {"reason": ""}
+
+    def before_step(mbs, t):
+        for hook in scene.step_hooks:
+            hook(mbs, t)
+        if t - reported[0] >= PROGRESS_STEP:
+            if monitor is not None and monitor.stop_requested():
+                status["reason"] = "interrupted"
+                return False
+            if not np.all(np.isfinite(mbs.systemData.GetODE2Coordinates())):
+                status["reason"] = f"non-finite state at t = {t:.6g} s"
+                return False
+            pressing = float(np.max(np.abs(mbs.GetSensorValues(scene.drive_sensors[2]))))
+            if pressing > bound:
+                status["reason"] = beyond_bound_message(case.model.kind, t, pressing, bound)
+                return False
+            if monitor is not None:
+                monitor.advance(t - reported[0])
+            reported[0] = t
+        return True
+
+    scene.mbs.SetPreStepUserFunction(before_step)
+    start = time.perf_counter()
+    completed, message = True, ""
+    try:
+        completed = bool(scene.mbs.SolveDynamic(settings, storeSolver=True))
+    except (exu.SolverError, RuntimeError) as err:
+        completed, message = False, " ".join(str(err).split())
+    wall = time.perf_counter() - start
+    coordinates = None
+    if coordinates_file is not None:
+        try:
+            coordinates = read_coordinate_file(coordinates_file)
+        finally:
+            os.unlink(coordinates_file)
+    if status["reason"]:
+        completed, message = False, status["reason"]
+    if monitor is not None:
+        monitor.advance(end_time - reported[0])
+    drive = [np.asarray(scene.mbs.GetSensorStoredData(s)) for s in scene.drive_sensors]
+    histories = [[np.asarray(scene.mbs.GetSensorStoredData(s)) for s in sensors]
+                 for sensors in scene.node_sensors]
+    n = min(len(h) for h in [*drive, *(h for nodes in histories for h in nodes)])
+    nodes = np.array([[h[:n, 1:4] for h in bristle] for bristle in histories])
+    reaction = np.column_stack([d[:n, 1] for d in drive]) if n else np.zeros((0, 3))
+    finite = np.all(np.isfinite(reaction), axis=1) & np.all(np.isfinite(nodes), axis=(0, 1, 3))
+    sane = finite & (np.abs(np.nan_to_num(reaction[:, 2])) <= bound)
+    if not sane.all():  # never pass a diverged or unphysical sample on as data
+        n = int(np.argmin(sane))
+        completed = False
+        message = message or ("non-finite forces or positions" if not finite.all()
+                              else "normal force beyond the physical bound")
+    recorded = drive[0][:n, 0]
+    grid, reaction = on_output_grid(recorded, reaction[:n], case.output.interval)
+    _, nodes = on_output_grid(recorded, nodes[:, :, :n].transpose(2, 0, 1, 3),
+                              case.output.interval)
+    if coordinates is not None:  # the rows up to the last sane sample
+        kept = coordinates[coordinates[:, 0] <= (recorded[-1] if n else -1.0) + 1e-12]
+        shape_grid, values = on_output_grid(kept[:, 0], kept[:, 1:], case.output.shape_interval)
+        coordinates = np.column_stack([shape_grid, values])
+    return GroupSolution(
+        time=grid,
+        reaction=reaction,
+        nodes=nodes,
+        coordinates=coordinates,
+        statistics=solver_statistics(scene.mbs),
+        completed=bool(completed and n > 0 and drive[0][n - 1, 0] >= end_time - 1e-9),
+        message=message,
+        wall_time=wall,
+        contacts=len(scene.contacts),
+        handle_mass=float(scene.handle_mass),
+    )
+
+
+def solver_statistics(mbs) -> SolverStatistics:
+    """Step, Newton and Jacobian counts of the last dynamic solve of ``mbs``."""
+    solver = mbs.sys.get("dynamicSolver")
+    if solver is None:
+        return SolverStatistics()
+    it = solver.it
+    return SolverStatistics(
+        steps=int(it.currentStepIndex),
+        newton_iterations=int(it.newtonStepsCount),
+        jacobian_updates=int(it.newtonJacobiCount),
+        rejected_modified_newton_steps=int(it.rejectedModifiedNewtonSteps),
+    )
+
+
+def on_output_grid(times: np.ndarray, values: np.ndarray, interval: float):
+    """Samples onto exact multiples of ``interval`` [s], by linear interpolation.
+
+    Exudyn records a sensor or solution row at the first step end at or after each
+    multiple of the write period, so after a step cut two bristles' rows can be a step
+    apart. Interpolated onto the same grid, rows of different bristles add up at the same
+    time. The grid ends at the last record; ``values`` has the records along axis 0.
+    """
+    if len(times) == 0:
+        return np.zeros(0), values[:0]
+    count = int(np.floor(times[-1] / interval + 1e-9)) + 1
+    grid = np.arange(count) * interval
+    columns = values.reshape(len(times), -1).T
+    resampled = np.array([np.interp(grid, times, column) for column in columns]).T
+    return grid, resampled.reshape((count, *values.shape[1:]))

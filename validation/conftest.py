@@ -1,0 +1,12 @@
+"""The validation notebooks that take longest (tens of seconds each on 2 cores) belong to
+the slow tier; ``python -m pytest -m "not slow"`` leaves them out."""
+
+import pytest
+
+SLOW_NOTEBOOKS = {"howell_parameters.ipynb", "sliding_bristle.ipynb"}
+
+
+def pytest_collection_modifyitems(items):
+    for item in items:
+        if item.path.name in SLOW_NOTEBOOKS:
+            item.add_marker(pytest.mark.slow)
