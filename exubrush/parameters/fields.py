@@ -162,13 +162,18 @@ def build(cls: type, data: dict | None, prefix: str = "") -> Any:
             )
         elif f.name in data:
             values[f.name] = _read_scalar(key, data[f.name], f.metadata, annotation)
-    instance = cls(**values)
+    return _checked(cls(**values), prefix.rstrip(".") or "case")
+
+
+def _checked(instance: Any, label: str) -> Any:
+    """``instance`` after its own cross-field rules (``check()``, if it has one) passed;
+    a broken rule becomes a ParameterError that starts with ``label``."""
     check = getattr(instance, "check", None)
     if check is not None:
         try:
             check()
         except ValueError as err:
-            raise ParameterError(f"{prefix.rstrip('.') or 'case'}: {err}") from None
+            raise ParameterError(f"{label}: {err}") from None
     return instance
 
 
@@ -319,14 +324,7 @@ class Parameters:
             if name not in fields:
                 raise ParameterError(f"{key}: unknown; known: {', '.join(sorted(fields))}")
             _check_value(key, value, fields[name].metadata, types[name])
-        instance = dataclasses.replace(self, **changes)
-        check = getattr(instance, "check", None)
-        if check is not None:
-            try:
-                check()
-            except ValueError as err:
-                raise ParameterError(f"{section}: {err}") from None
-        return instance
+        return _checked(dataclasses.replace(self, **changes), section)
 
 
 def _check_value(key: str, value: Any, meta: dict, annotation: Any) -> None:

@@ -12,13 +12,13 @@ from exubrush.parameters.io import load_case
 from exubrush.presets import PRESETS, preset_overrides
 from exubrush.simulation import simulate
 
-pytestmark = pytest.mark.slow  # a DFM N = 24 reference and three preset runs
 
 SMALL_HEAD = ["head.rows=1", "head.columns=2", "motion.periods=1"]
 REFERENCE = ["model.segments=24", "solver.step_size='0.25 ms'",
              "solver.relative_tolerance=1e-8"]
 
 
+# the preset checks need a DFM N = 24 reference and a run per preset: slow tier
 @pytest.fixture(scope="module")
 def reference():
     results = simulate(load_case("orthogonal", [*SMALL_HEAD, *REFERENCE]), progress=False)
@@ -35,6 +35,7 @@ def _largest_flat_difference(reference, overrides):
     return compare(aligned, found)["largest_flat_difference"]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", list(PRESETS))
 def test_preset_flat_zone_forces_within_the_stated_error(reference, name):
     largest = _largest_flat_difference(reference, preset_overrides(name))
@@ -42,6 +43,7 @@ def test_preset_flat_zone_forces_within_the_stated_error(reference, name):
     assert abs(largest["tangential_force"]) <= PRESETS[name].flat_error
 
 
+@pytest.mark.slow
 def test_builtin_contact_keeps_the_fast_presets_flat_zone_error(reference):
     # in steady sliding the built-in contact's fit is the law (same k δ^m1, μ = μ_d; its
     # damping is negligible), so only the solver settings' error should remain

@@ -2,6 +2,7 @@
 
     python validation/benchmarks/benchmark.py [--case orthogonal] [--head default|small]
         [--repeat 3] [--only NAME ...] [--out validation/results/benchmarks]
+        [--code LABEL=SOURCE_TREE ...]
 
 Each variant is the case (approach plus one slide period) with a few parameters changed. It
 runs ``--repeat`` times; the wall time is the median, the errors come from the first run
@@ -17,6 +18,12 @@ overrides that made it:
 Output in ``--out``: ``benchmark-CASE-HEAD.csv`` and ``.md`` (one row per variant) and
 ``pareto-CASE-HEAD.png`` (wall time against flat-zone error). Timings depend on the machine
 and on what else runs: compare variants within one run of the harness.
+
+``--code old=/path/to/old/checkout new=.`` times the same variants with several source
+trees of exubrush (e.g. a commit before a change and after it) in one run: every run is a
+fresh process with that tree first on its path, the trees take turns (old, new, old, new,
+...) so that a drift of the machine's speed hits all of them alike, and each row is named
+``variant [label]``. The trees must accept the variant's parameter keys.
 """
 
 from __future__ import annotations
@@ -27,6 +34,9 @@ import json
 import os
 import platform
 import statistics
+import subprocess
+import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -41,6 +51,7 @@ from exubrush.experiment import (
     strokes,
 )
 from exubrush.parameters.io import load_case
+from exubrush.plotting import figure
 from exubrush.presets import PRESETS
 from exubrush.results import Results, read_results
 from exubrush.simulation import simulate
@@ -136,19 +147,66 @@ def reference_results(case_name: str, head: str, out: Path) -> Results:
     return results
 
 
-def run_variant(case_name: str, head: str, name: str, repeat: int) -> tuple[Results, dict]:
-    """Run a variant ``repeat`` times; return its first results and the timing record."""
-    walls, first = [], None
+def run_variant(case_name: str, head: str, name: str, repeat: int,
+                code: dict[str, Path] | None = None) -> list[tuple[Results, dict]]:
+    """Run a variant ``repeat`` times (with each source tree of ``code`` in turn, or in this
+    process); return the first results and the timing record of each tree."""
+    labels = list(code) if code else [None]
+    walls = {label: [] for label in labels}
+    first = {}
     workers = 1 if name in SINGLE_PROCESS else None
+    overrides = [*HEADS[head], "motion.periods=1", *BASELINE, *VARIANTS[name]]
     for _ in range(repeat):
-        start = time.perf_counter()
-        results = simulate(_case(case_name, head, VARIANTS[name]), progress=False,
-                           workers=workers)
-        walls.append(time.perf_counter() - start)
-        first = first or results
-    meta = first.metadata
+        for label in labels:
+            if label is None:
+                start = time.perf_counter()
+                results = simulate(_case(case_name, head, VARIANTS[name]), progress=False,
+                                   workers=workers)
+                wall = time.perf_counter() - start
+            else:
+                results, wall = _run_in_tree(code[label], case_name, overrides, workers)
+            walls[label].append(wall)
+            first.setdefault(label, results)
+    return [(first[label], _record(name if label is None else f"{name} [{label}]",
+                                   first[label], walls[label])) for label in labels]
+
+
+# a fresh interpreter started in one source tree (python -c puts the working directory
+# first on the path, before an installed exubrush); times simulate() only
+WORKER = """
+import json, sys, time
+import exubrush
+from exubrush.parameters.io import load_case
+from exubrush.simulation import simulate
+case, overrides, workers, out = json.loads(sys.argv[1])
+parameters = load_case(case, overrides)
+start = time.perf_counter()
+results = simulate(parameters, progress=False, workers=workers)
+wall = time.perf_counter() - start
+results.save(out)
+print(json.dumps({"wall": wall, "module": exubrush.__file__}))
+"""
+
+
+def _run_in_tree(tree: Path, case_name: str, overrides: list[str],
+                 workers: int | None) -> tuple[Results, float]:
+    with tempfile.TemporaryDirectory() as out:
+        environment = {**os.environ, "PYTHONPATH": str(tree.resolve())}
+        done = subprocess.run(
+            [sys.executable, "-c", WORKER, json.dumps([case_name, overrides, workers, out])],
+            capture_output=True, text=True, env=environment, cwd=tree, check=False)
+        if done.returncode != 0:
+            raise SystemExit(f"run with {tree} failed:\n{done.stderr[-2000:]}")
+        report = json.loads(done.stdout.strip().splitlines()[-1])
+        if not Path(report["module"]).resolve().is_relative_to(tree.resolve()):
+            raise SystemExit(f"{tree}: the run imported {report['module']} instead")
+        return read_results(out), report["wall"]
+
+
+def _record(name: str, results: Results, walls: list[float]) -> dict:
+    meta = results.metadata
     stats = meta["solver_statistics"]
-    return first, {
+    return {
         "variant": name, "status": meta["status"],
         "wall_time_s": statistics.median(walls), "wall_times_s": walls,
         "simulated_s": meta["simulated_time_s"],
@@ -182,12 +240,7 @@ def write_outputs(rows: list[dict], out: Path, stem: str, machine: str) -> None:
                      f"| {_pct(r['reversal_peak'])} | {r['tip_mm']:.3f} |")
     (out / f"{stem}.md").write_text("\n".join(lines) + "\n")
 
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, axis = plt.subplots(figsize=(11, 5.5))
+    fig, axis = figure(1, 1, figsize=(11, 5.5))
     fig.subplots_adjust(left=0.08, right=0.6, bottom=0.11, top=0.92)
     points = [(number, r["wall_time_s"], 100 * max(abs(r["flat_normal"]), 1e-5))
               for number, r in enumerate(rows, 1) if r["flat_normal"] is not None]
@@ -215,7 +268,6 @@ def write_outputs(rows: list[dict], out: Path, stem: str, machine: str) -> None:
     names = "\n".join(f"{number:2d}  {r['variant']}" for number, r in enumerate(rows, 1))
     fig.text(0.62, 0.92, names, fontsize=8, va="top", family="monospace")
     fig.savefig(out / f"pareto-{stem.removeprefix('benchmark-')}.png", dpi=110)
-    plt.close(fig)
 
 
 def main() -> None:
@@ -226,18 +278,30 @@ def main() -> None:
     parser.add_argument("--only", nargs="*", choices=sorted(VARIANTS), metavar="VARIANT")
     parser.add_argument("--out", type=Path,
                         default=Path(__file__).parent.parent / "results" / "benchmarks")
+    parser.add_argument("--code", nargs="+", metavar="LABEL=SOURCE_TREE",
+                        help="time these exubrush source trees in turn (see the docstring)")
     args = parser.parse_args()
+    code = None
+    if args.code:
+        pairs = [item.partition("=") for item in args.code]
+        if any(not sep or not label for label, sep, _ in pairs):
+            parser.error("--code takes LABEL=SOURCE_TREE, e.g. old=../exubrush-old")
+        code = {label: Path(tree) for label, _, tree in pairs}
+        for label, tree in code.items():
+            if not (tree / "exubrush" / "__init__.py").is_file():
+                parser.error(f"--code {label}={tree}: no exubrush package in that tree")
     args.out.mkdir(parents=True, exist_ok=True)
     machine = f"{platform.node()}, {os.cpu_count()} cores, Python {platform.python_version()}"
     reference = reference_results(args.case, args.head, args.out)
     rows = []
     for name in args.only or VARIANTS:
-        print(f"{name} ...", end=" ", flush=True)
-        results, record = run_variant(args.case, args.head, name, args.repeat)
-        record.update(errors(results, reference))
-        rows.append(record)
-        print(f"{record['wall_time_s']:.1f} s, flat F_n {_pct(record['flat_normal'])}",
-              flush=True)
+        print(f"{name} ...", flush=True)
+        for results, record in run_variant(args.case, args.head, name, args.repeat, code):
+            record.update(errors(results, reference))
+            rows.append(record)
+            print(f"  {record['variant']}: {record['wall_time_s']:.1f} s "
+                  f"({', '.join(f'{w:.1f}' for w in record['wall_times_s'])}), "
+                  f"flat F_n {_pct(record['flat_normal'])}", flush=True)
         write_outputs(rows, args.out, f"benchmark-{args.case}-{args.head}", machine)
     print(f"written {args.out}/benchmark-{args.case}-{args.head}.md")
 
