@@ -1,4 +1,11 @@
-"""Command line: ``exubrush run``, ``case``, ``compare``, ``frames`` and ``view``."""
+"""Command line: ``exubrush run``, ``case``, ``compare``, ``frames`` and ``view``.
+
+Every fault ends in one line on standard error and an exit status: 2 for input that cannot
+be used (a parameter, case file, CSV or path), 1 for a run that failed or results that
+could not be written, 130 for Ctrl-C or SIGTERM. A file-system fault anywhere (a path under
+a plain file, a directory that cannot be written, a full disk, a dangling link, a file that
+is not text) is reported with the path and the reason, never as a traceback.
+"""
 
 from __future__ import annotations
 
@@ -14,13 +21,37 @@ from exubrush.parameters.io import load_case
 from exubrush.presets import PRESETS, preset_overrides
 from exubrush.units import UnitError
 
-
-def _fail(message: str) -> None:
-    click.echo(f"exubrush: error: {message}", err=True)
-    sys.exit(2)
+INPUT_ERROR, RUN_FAILED, INTERRUPTED = 2, 1, 130
 
 
-@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+def _fail(message: str, status: int = INPUT_ERROR) -> None:
+    click.echo(f"exubrush: error: {' '.join(message.split())}", err=True)
+    sys.exit(status)
+
+
+def os_message(err: OSError) -> str:
+    """``path: reason`` of a file-system error (both paths of a failed rename)."""
+    paths = [str(p) for p in (err.filename, err.filename2) if p is not None]
+    reason = err.strerror or type(err).__name__
+    return f"{' -> '.join(paths)}: {reason}" if paths else reason
+
+
+class _Commands(click.Group):
+    """The command group: faults that can reach any command end in one line."""
+
+    def invoke(self, ctx):
+        try:
+            return super().invoke(ctx)
+        except OSError as err:
+            _fail(os_message(err))
+        except UnicodeError as err:
+            _fail(f"a file is not UTF-8 text ({err.reason} at byte {err.start})")
+        except KeyboardInterrupt:
+            _fail("interrupted before the run started; nothing was written",
+                  INTERRUPTED)
+
+
+@click.group(cls=_Commands, context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(package_name="exubrush")
 def main() -> None:
     """Toothbrush bristle deflection and contact forces with Exudyn."""
@@ -32,7 +63,7 @@ def main() -> None:
 @click.option("--segments", type=int, help="DFM rigid bodies per bristle [default: 6].")
 @click.option("--periods", type=float,
               help="Slide periods after the approach [default: 2].")
-@click.option("--out", type=click.Path(file_okay=False), help="Result directory "
+@click.option("--out", type=click.Path(), help="Result directory "
               "[default: results/CASE-MODEL].")
 @click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE",
               help="Override a parameter by its dotted key, e.g. --set head.rows=2 "
@@ -63,28 +94,36 @@ def run(case, model, segments, periods, out, overrides, overwrite, quiet, preset
     except (ParameterError, UnitError) as err:
         _fail(str(err))
     parameters = prepared.case
+    for warning in prepared.warnings:
+        click.echo(f"exubrush: warning: {warning}", err=True)
     if prepared.unreachable:
         click.echo(f"exubrush: warning: {prepared.unreachable} of {len(prepared.bristles)} "
                    "bristles cannot reach the surface at motion.interaction_distance = "
                    f"{parameters.motion.interaction_distance:g} mm; they get no contact",
                    err=True)
     from exubrush.execution.signals import signals_redirected
-    from exubrush.rundir import RunDirectory, RunDirectoryError
+    from exubrush.rundir import RunDirectory, RunDirectoryError, default_directory
     from exubrush.simulation import simulate
 
-    directory = Path(out or f"results/{parameters.name}-{parameters.model.kind}")
+    directory = Path(out or default_directory(parameters))
     try:
-        store = RunDirectory(directory, parameters, overwrite)
+        store = RunDirectory(directory, prepared, overwrite)
     except RunDirectoryError as err:
         _fail(str(err))
     if store.resumed:
         click.echo(f"resuming: {store.resumed} finished bristle groups read from "
                    f"{store.checkpoint}", err=True)
-    # a kill (SIGTERM) stops the run like Ctrl-C: what is finished is kept and saved
-    signal.signal(signal.SIGTERM, signal.default_int_handler)
-    results = simulate(prepared, progress=not quiet, directory=store)
-    with signals_redirected(signal.SIG_IGN):  # a second of writing: finish, never half done
-        results.save(directory)
+    # Ctrl-C or SIGTERM while solving: the executor stops the solves, keeps what finished
+    # and returns; one that arrives after it (assembling, writing: a second or two) is let
+    # pass, so the results are written whole
+    try:
+        with signals_redirected(signal.SIG_IGN):
+            results = simulate(prepared, progress=not quiet, directory=store)
+            results.save(directory)
+    except OSError as err:
+        _fail(f"results not written: {os_message(err)}; the finished bristles stay in "
+              f"{store.checkpoint}: free the space or fix the directory and run the same "
+              "command again to resume", RUN_FAILED)
     meta = results.metadata
     sanity = meta["sanity"]
     if not sanity["within_bound"]:
@@ -102,7 +141,7 @@ def run(case, model, segments, periods, out, overrides, overwrite, quiet, preset
              if len(results.time) else f"no complete time series yet; status in {directory}/")
     click.echo(f"exubrush: {meta['status']}: {meta['message']}; {saved} (run.json: status "
                f"{meta['status']!r})", err=True)
-    sys.exit(130 if meta["status"] == "interrupted" else 1)
+    sys.exit(INTERRUPTED if meta["status"] == "interrupted" else RUN_FAILED)
 
 
 @main.command()
@@ -120,7 +159,7 @@ def case(case, overrides):
 @main.command()
 @click.argument("results_dir", type=click.Path())
 @click.argument("measured_csv", type=click.Path())
-@click.option("--out", type=click.Path(file_okay=False),
+@click.option("--out", type=click.Path(),
               help="Where to write the comparison [default: RESULTS_DIR/compare-CSVNAME].")
 @click.option("--align", "alignment", type=click.Choice(["time", "position"]), default="time",
               show_default=True, help="time: measured time + --time-offset is simulation "
@@ -199,7 +238,7 @@ def _parse_times(text: str | None) -> list[float] | None:
 @click.argument("results_dirs", nargs=-1, required=True, type=click.Path())
 @click.option("--times", help="Simulated times [s] of the PNG frames, comma separated "
               "[default: 8 instants spread over the run].")
-@click.option("--out", type=click.Path(file_okay=False),
+@click.option("--out", type=click.Path(),
               help="Where to write the frames [default: first RESULTS_DIR/frames].")
 @click.option("--gif-frames", type=click.IntRange(min=0), default=120, show_default=True,
               help="Frames of the animated GIF through all stored shapes (0: no GIF).")

@@ -10,10 +10,20 @@ unreadable slide CSV) are raised here as :class:`~exubrush.parameters.fields.Par
 
 from __future__ import annotations
 
+import hashlib
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
+from exubrush.budget import (
+    WorkEstimate,
+    estimate,
+    motion_warnings,
+    over_size,
+    over_work,
+    unresolved,
+)
 from exubrush.kinematics import SLIDE_AXES
 from exubrush.models.geometry import BristleGeometry, can_reach, head_bristles
 from exubrush.models.howell import howell_parameters
@@ -65,6 +75,13 @@ class PreparedCase:
         Each bristle's force straight and fully compressed [N] (exubrush.sanity).
     groups : tuple
         The bristle groups solved as separate Exudyn systems: tuples of bristle indices.
+    work : WorkEstimate
+        What the run will cost (exubrush.budget), within ``case.limits``.
+    inputs : tuple of (str, str)
+        (key, SHA-256 of the file's bytes) of every input file the case names, so that a
+        resume can tell a changed file from the same one (exubrush.rundir).
+    warnings : tuple of str
+        What the user should know before the run (e.g. a slide CSV faster than the step).
     """
 
     case: Case
@@ -75,6 +92,9 @@ class PreparedCase:
     friction_window: tuple[float, float] | None
     force_limits: tuple[float, ...]
     groups: tuple[tuple[int, ...], ...]
+    work: WorkEstimate
+    inputs: tuple[tuple[str, str], ...]
+    warnings: tuple[str, ...] = ()
 
     @property
     def slide_axis(self) -> np.ndarray:
@@ -101,14 +121,18 @@ def prepare(case: Case) -> PreparedCase:
     Raises
     ------
     ParameterError
-        If no bristle can reach the surface or the slide CSV cannot be read.
+        If the work exceeds ``case.limits``, the step or output interval do not resolve the
+        motion, no bristle can reach the surface or the slide CSV cannot be read.
     """
+    _refuse(over_size(case, case.head.count))
     bristles = tuple(head_bristles(case.head))
     try:
         motion, height = head_motion(case, bristles)
     except ValueError as err:
         key = "motion.csv_file: " if case.motion.profile == "csv" else ""
         raise ParameterError(f"{key}{err}") from None
+    work = estimate(case, len(bristles), motion.end_time)
+    _refuse(over_work(case, work) + unresolved(case, motion))
     return PreparedCase(
         case=case,
         bristles=bristles,
@@ -118,7 +142,27 @@ def prepare(case: Case) -> PreparedCase:
         friction_window=friction_window(case, motion),
         force_limits=static_force_limits(case, bristles),
         groups=bristle_groups(case, len(bristles)),
+        work=work,
+        inputs=input_digests(case),
+        warnings=tuple(motion_warnings(case, motion)),
     )
+
+
+def input_digests(case: Case) -> tuple[tuple[str, str], ...]:
+    """(key, SHA-256) of every input file of ``case`` (read after it was read once)."""
+    if case.motion.profile != "csv":
+        return ()
+    path = Path(case.motion.csv_file)
+    try:
+        return (("motion.csv_file", hashlib.sha256(path.read_bytes()).hexdigest()),)
+    except OSError as err:
+        raise ParameterError(f"motion.csv_file: {path}: {err.strerror}") from None
+
+
+def _refuse(problems: list[str]) -> None:
+    """One ParameterError naming every problem found (one line)."""
+    if problems:
+        raise ParameterError("; ".join(problems))
 
 
 def prb_parameters(case: Case) -> PrbParameters:

@@ -3,7 +3,8 @@
 A run writes into one directory. Before it starts:
 
 - a new or empty directory is used as it is;
-- a directory holding an unfinished run of the *same* case (same parameters) written by
+- a directory holding an unfinished run of the *same* case (same parameters and the same
+  content of every input file, e.g. a slide CSV) written by
   the same code (exubrush version and, where known, git commit) is resumed: the bristle
   groups already solved are read back, not solved again;
 - a checkpoint written by another version of the code is refused with both versions named:
@@ -21,14 +22,15 @@ from __future__ import annotations
 
 import hashlib
 import json
+import re
 import shutil
 from pathlib import Path
 
 import numpy as np
 
 from exubrush.files import atomic_file
-from exubrush.parameters.case import Case
 from exubrush.parameters.fields import to_plain
+from exubrush.prepared import PreparedCase
 from exubrush.provenance import code_identity
 from exubrush.solution_files import SOLUTION_FILE
 from exubrush.solve import GroupSolution
@@ -39,13 +41,27 @@ CODE_FILE = "code.json"  # the exubrush version and commit that wrote the checkp
 RESULT_FILES = ("forces.csv", "run.json", "forces.png", "shapes.npz", SOLUTION_FILE)
 
 
+NAME_LENGTH = 64  # characters of a case name kept in a default directory name
+
+
+def default_directory(case) -> Path:
+    """``results/NAME-MODEL``, with the case name made safe as one directory name: only
+    letters, digits, ``.``, ``_`` and ``-`` (anything else becomes ``_``), no leading dot
+    (so never ``..``), at most 64 characters. So a name can never lead outside results/."""
+    safe = re.sub(r"[^A-Za-z0-9._-]", "_", case.name).lstrip(".")[:NAME_LENGTH] or "case"
+    return Path("results") / f"{safe}-{case.model.kind}"
+
+
 class RunDirectoryError(ValueError):
     """The output directory cannot be used for this run without losing or mixing data."""
 
 
-def case_fingerprint(case: Case) -> str:
-    """Hash of every parameter: equal means the same case (the code is checked apart)."""
-    text = json.dumps({"case": to_plain(case)}, sort_keys=True)
+def case_fingerprint(prepared: PreparedCase) -> str:
+    """Hash of every parameter but the limits (they change no result) and of the content
+    of every input file: equal means the same run (the code is checked apart)."""
+    parameters = to_plain(prepared.case)
+    parameters.pop("limits", None)
+    text = json.dumps({"case": parameters, "inputs": dict(prepared.inputs)}, sort_keys=True)
     return hashlib.sha256(text.encode()).hexdigest()[:16]
 
 
@@ -57,12 +73,13 @@ def _describe(code: dict | None) -> str:
 
 
 class RunDirectory:
-    """Checks and prepares ``path`` for ``case``; stores and reloads finished groups."""
+    """Checks and prepares ``path`` for a run of ``prepared``; stores and reloads finished
+    groups."""
 
-    def __init__(self, path: str | Path, case: Case, overwrite: bool = False):
+    def __init__(self, path: str | Path, prepared: PreparedCase, overwrite: bool = False):
         self.path = Path(path)
         self.checkpoint = self.path / CHECKPOINT
-        self.fingerprint = case_fingerprint(case)
+        self.fingerprint = case_fingerprint(prepared)
         self.code = code_identity()
         self.resumed = 0
         self._prepare(overwrite)
@@ -70,6 +87,10 @@ class RunDirectory:
     def _prepare(self, overwrite: bool) -> None:
         if self.path.exists() and not self.path.is_dir():
             raise RunDirectoryError(f"--out {self.path}: is a file, not a directory")
+        blocking = next((p for p in self.path.parents if p.exists() and not p.is_dir()), None)
+        if blocking is not None:
+            raise RunDirectoryError(f"--out {self.path}: is not a directory (a file is in the "
+                                    f"way: {blocking})")
         present = {p.name for p in self.path.iterdir()} if self.path.is_dir() else set()
         foreign = sorted(present - {*RESULT_FILES, CHECKPOINT} - _temporaries(present))
         if foreign:
@@ -84,7 +105,9 @@ class RunDirectory:
             if stored == self.fingerprint and not self._finished_run():
                 self.resumed = len(self.stored_groups())
                 return
-            what = "complete results" if self._finished_run() else "results of another case"
+            what = ("complete results" if self._finished_run() else
+                    "an unfinished run of another case, or of the same case with other "
+                    "input files (e.g. a changed slide CSV)")
             raise RunDirectoryError(
                 f"--out {self.path}: already holds {what}; choose another directory or "
                 "pass --overwrite to replace them"

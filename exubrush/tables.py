@@ -42,14 +42,23 @@ def read_unit_table(path: str | Path, columns: dict[str, str], what: str) -> dic
 
     path = Path(path)
     name = f"{what} {str(path)!r}"
+    if not path.exists():
+        broken = " (a link to nothing)" if path.is_symlink() else ""
+        raise ValueError(f"{name} does not exist{broken}")
     if not path.is_file():
-        raise ValueError(f"{name} does not exist")
-    with path.open(newline="") as handle:
-        rows = [
-            (line, row)
-            for line, row in enumerate(csv.reader(handle), start=1)
-            if any(cell.strip() for cell in row) and not row[0].lstrip().startswith("#")
-        ]
+        raise ValueError(f"{name} is not a file")
+    try:
+        with path.open(newline="", encoding="utf-8") as handle:
+            rows = [
+                (line, row)
+                for line, row in enumerate(csv.reader(handle), start=1)
+                if any(cell.strip() for cell in row) and not row[0].lstrip().startswith("#")
+            ]
+    except UnicodeDecodeError as err:
+        raise ValueError(f"{name} is not UTF-8 text (byte {err.start})") from None
+    except (OSError, csv.Error) as err:
+        raise ValueError(f"{name} cannot be read ({getattr(err, 'strerror', None) or err})"
+                         ) from None
     if len(rows) < 3:
         raise ValueError(f"{name} needs a header and at least two rows, found {len(rows)} lines")
     header = {}

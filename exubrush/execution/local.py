@@ -1,9 +1,10 @@
 """Executors on this machine: in this process, or a pool of worker processes.
 
 Exudyn's threads do not mix with Python user functions, so parallel work uses processes
-("spawn": a fresh interpreter per worker, as on every platform). Ctrl-C reaches the whole
-process group; the parent decides: workers ignore SIGINT, and an event asks the running
-solves to stop at their next check and return what they have. A worker whose parent died
+("spawn": a fresh interpreter per worker, as on every platform). Ctrl-C, or a SIGTERM sent
+to the whole process group, reaches every worker; the parent decides: workers ignore
+SIGINT and SIGTERM, and an event asks the running solves to stop at their next check and
+return what they have. A worker whose parent died
 (kill -9) exits at once instead of computing on as an orphan.
 """
 
@@ -53,27 +54,24 @@ class ProcessExecutor(Executor):
     def run(self, prepared, tasks, solved, advance) -> bool:
         context = multiprocessing.get_context("spawn")
         updates, stop = context.Queue(), context.Event()
-        interrupted = False
-        with ProcessPoolExecutor(min(self.processes, len(tasks)), mp_context=context,
-                                 initializer=_init_worker,
-                                 initargs=(updates, os.getpid(), stop)) as pool:
+        with (signals_redirected(lambda *_: stop.set()),
+              ProcessPoolExecutor(min(self.processes, len(tasks)), mp_context=context,
+                                  initializer=_init_worker,
+                                  initargs=(updates, os.getpid(), stop)) as pool):
             futures = {pool.submit(_solve_in_worker, prepared, task.selection): task
                        for task in tasks}
             pending = set(futures)
             while pending:
-                try:
-                    done, pending = wait(pending, timeout=POLL, return_when=FIRST_COMPLETED)
-                    for future in done:
-                        if not future.cancelled():
-                            solved(futures[future], future.result())
-                    _drain(updates, advance)
-                except KeyboardInterrupt:
-                    interrupted = True
-                    stop.set()  # running solves return what they have at their next check
+                done, pending = wait(pending, timeout=POLL, return_when=FIRST_COMPLETED)
+                for future in done:
+                    if not future.cancelled():
+                        solved(futures[future], future.result())
+                _drain(updates, advance)
+                if stop.is_set():  # running solves return what they have at their next check
                     for future in pending:
                         future.cancel()
-        _drain(updates, advance)
-        return interrupted
+            _drain(updates, advance)
+        return stop.is_set()
 
 
 def local_executor(workers: int | None, tasks: int) -> Executor:
@@ -107,6 +105,7 @@ _WORKER: dict = {"monitor": None}
 def _init_worker(updates, parent: int, stop) -> None:
     """Pool initializer: progress goes to ``updates``, ``stop`` asks for a clean stop."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_IGN)
     _WORKER["monitor"] = _Monitor(stop, updates.put, parent)
 
 

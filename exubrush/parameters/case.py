@@ -98,6 +98,11 @@ class Head(Parameters):
     bristle: BristleShape = field(default_factory=BristleShape)
     bristles: tuple[BristleEntry, ...] = ()
 
+    @property
+    def count(self) -> int:
+        """Number of bristles, known before any is built."""
+        return len(self.bristles) if self.layout == "list" else self.rows * self.columns
+
     def check(self) -> None:
         """A list layout needs entries, each at its own root."""
         if self.layout == "list" and not self.bristles:
@@ -293,6 +298,21 @@ class Output(Parameters):
 
 
 @dataclass(frozen=True)
+class Limits(Parameters):
+    """Bounds on the work a run may take on, checked before anything is built
+    (exubrush.budget). Generous for real studies; raise them to run bigger ones. They do
+    not change results, so a run that only raises a limit resumes its checkpoint."""
+
+    bristles: int = param(10_000, "most bristles in a head", above=0)
+    segments: int = param(200, "most DFM bodies per bristle", above=0)
+    steps: int = param(
+        20_000_000, "most time steps per solved system at solver.step_size (end time / step)",
+        above=0)
+    memory: float = param(8e9, "most memory the recorded results may take (estimate)", "B",
+                          "GB", above=0.0)
+
+
+@dataclass(frozen=True)
 class Case(Parameters):
     """A complete brushing case."""
 
@@ -303,6 +323,7 @@ class Case(Parameters):
     motion: Motion = field(default_factory=Motion)
     solver: Solver = field(default_factory=Solver)
     output: Output = field(default_factory=Output)
+    limits: Limits = field(default_factory=Limits)
 
     def load_ratio(self) -> float:
         """The PRB load ratio n (model.prb_load_ratio; '1/mu_d' from the contact law)."""
@@ -320,7 +341,10 @@ class Case(Parameters):
                              "number") from None
 
     def check(self) -> None:
-        """Rules that tie sections together (PRB parameters, threads, friction blending)."""
+        """Rules that tie sections together (PRB parameters, threads, friction blending),
+        and a name that can label files and plots."""
+        if not self.name.isprintable() or not 0 < len(self.name) <= 100:
+            raise ValueError(f"name {self.name!r} must be 1 to 100 printable characters")
         prb = self.model.kind == "prb"
         source = self.model.prb_parameters
         if prb and source != "explicit":

@@ -23,6 +23,11 @@ class ParameterError(ValueError):
     """A parameter value is missing, malformed, of the wrong unit or out of range."""
 
 
+# every number exubrush computes with stays within these magnitudes (internal units), so
+# that products and powers of parameters stay finite; 0 is always allowed
+MAGNITUDE = (1e-20, 1e20)
+C_INT = 2**31 - 1  # Exudyn takes counts as C ints
+
 def param(
     default: Any,
     doc: str,
@@ -94,6 +99,9 @@ def _read_scalar(key: str, value: Any, meta: dict, annotation: Any) -> Any:
     if annotation is int:
         if isinstance(value, bool) or not isinstance(value, int):
             raise ParameterError(f"{key}: expected a whole number, got {value!r}")
+        if abs(value) > C_INT:
+            raise ParameterError(f"{key}: {value} does not fit a 32-bit integer (at most "
+                                 f"{C_INT})")
         number = value
     else:
         if isinstance(value, int | float) and not isinstance(value, bool) and unit != "1":
@@ -112,6 +120,10 @@ def _read_scalar(key: str, value: Any, meta: dict, annotation: Any) -> Any:
 def _check_range(key: str, number: float, shown: str, meta: dict) -> None:
     """Refuse ``number`` (internal unit) outside the field's range; ``shown`` is how the
     user wrote it."""
+    if number != 0 and not MAGNITUDE[0] <= abs(number) <= MAGNITUDE[1]:
+        unit = "" if meta["unit"] == "1" else f" {meta['unit']}"
+        raise ParameterError(f"{key}: {shown} is outside the magnitudes exubrush computes "
+                             f"with ({MAGNITUDE[0]:g} to {MAGNITUDE[1]:g}{unit})")
     for bound, fails, relation in (
         ("minimum", lambda b: number < b, ">="),
         ("above", lambda b: number <= b, ">"),
@@ -143,8 +155,9 @@ def build(cls: type, data: dict | None, prefix: str = "") -> Any:
         if key in getattr(cls, "RENAMED", {}):
             raise ParameterError(f"{prefix}{key}: {cls.RENAMED[key]}")
         if key not in names:
+            shown = prefix + key if (prefix + key).isprintable() else repr(prefix + key)
             raise ParameterError(
-                f"{prefix}{key}: unknown key; known keys here: {', '.join(sorted(names))}"
+                f"{shown}: unknown key; known keys here: {', '.join(sorted(names))}"
             )
     values = {}
     for f in dataclasses.fields(cls):
@@ -345,6 +358,8 @@ def _check_value(key: str, value: Any, meta: dict, annotation: Any) -> None:
         raise ParameterError(f"{key}: expected a number in {meta['unit']}, got {value!r}")
     if annotation is int and not isinstance(value, int):
         raise ParameterError(f"{key}: expected a whole number, got {value!r}")
+    if annotation is int and abs(value) > C_INT:
+        raise ParameterError(f"{key}: {value} does not fit a 32-bit integer (at most {C_INT})")
     if not math.isfinite(value):
         raise ParameterError(f"{key}: {value!r} is not a finite number")
     _check_range(key, value, repr(value), meta)

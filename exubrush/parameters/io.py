@@ -6,6 +6,7 @@ reach, the slide CSV's content) is checked by :func:`exubrush.prepared.prepare`.
 
 from __future__ import annotations
 
+import os
 import tomllib
 from dataclasses import replace
 from pathlib import Path
@@ -25,17 +26,24 @@ def case_data(case: str) -> dict:
     if case in BUILT_IN_CASES:
         return to_plain(BUILT_IN_CASES[case]())
     path = Path(case)
-    if path.suffix.lower() == ".toml" and not path.is_file():
+    if path.suffix.lower() == ".toml" and not path.exists():
         raise ParameterError(f"case file {case!r} does not exist")
+    if path.suffix.lower() == ".toml" and not path.is_file():
+        raise ParameterError(f"case file {case!r} is not a file")
     if path.suffix.lower() != ".toml":
         raise ParameterError(
             f"unknown case {case!r}: use {', '.join(BUILT_IN_CASES)} or the path of a TOML "
             "case file (see 'exubrush case orthogonal')"
         )
     try:
-        return tomllib.loads(path.read_text())
+        return tomllib.loads(path.read_bytes().decode("utf-8"))
     except tomllib.TOMLDecodeError as err:
         raise ParameterError(f"{path}: not valid TOML ({err})") from None
+    except UnicodeDecodeError as err:
+        raise ParameterError(f"{path}: not UTF-8 text (byte {err.start}); case files are "
+                             "TOML, which is UTF-8") from None
+    except OSError as err:
+        raise ParameterError(f"{path}: cannot be read ({err.strerror})") from None
 
 
 def load_case(case: str, overrides: list[str] | tuple[str, ...] = ()) -> Case:
@@ -52,8 +60,9 @@ def load_case(case: str, overrides: list[str] | tuple[str, ...] = ()) -> Case:
 
 
 def _with_resolved_slide_csv(case: Case, case_folder: Path | None) -> Case:
-    """Resolve ``motion.csv_file`` relative to the case file, as an absolute path."""
+    """Resolve ``motion.csv_file`` relative to the case file, as an absolute path (links are
+    kept as they are, so that a message names the path the user gave)."""
     path = Path(case.motion.csv_file).expanduser()
     if not path.is_absolute() and case_folder is not None:
         path = case_folder / path
-    return replace(case, motion=replace(case.motion, csv_file=str(path.resolve())))
+    return replace(case, motion=replace(case.motion, csv_file=os.path.abspath(path)))

@@ -12,7 +12,6 @@ from exubrush.parameters.io import load_case
 from exubrush.presets import PRESETS, preset_overrides
 from exubrush.simulation import simulate
 
-
 SMALL_HEAD = ["head.rows=1", "head.columns=2", "motion.periods=1"]
 REFERENCE = ["model.segments=24", "solver.step_size='0.25 ms'",
              "solver.relative_tolerance=1e-8"]

@@ -156,10 +156,11 @@ def test_a_single_process_run_stops_cleanly_on_ctrl_c_or_kill(tmp_path, signal_n
 
 def test_a_resumed_group_keeps_the_coordinates_for_the_viewer(tmp_path):
     from exubrush.parameters.io import load_case
+    from exubrush.prepared import prepare
     from exubrush.rundir import RunDirectory
     from exubrush.solve import GroupSolution, SolverStatistics
 
-    case = load_case("orthogonal", ["output.solution_file=true"])
+    case = prepare(load_case("orthogonal", ["output.solution_file=true"]))
     solution = GroupSolution(
         time=np.arange(3.0), reaction=np.zeros((3, 3)), nodes=np.zeros((3, 1, 6, 3)),
         coordinates=np.arange(12.0).reshape(3, 4), statistics=SolverStatistics(steps=7),
@@ -173,9 +174,10 @@ def test_a_resumed_group_keeps_the_coordinates_for_the_viewer(tmp_path):
 
 def test_a_checkpoint_of_another_exubrush_version_is_refused(tmp_path):
     from exubrush.parameters.io import load_case
+    from exubrush.prepared import prepare
     from exubrush.rundir import CODE_FILE, RunDirectory, RunDirectoryError
 
-    case = load_case("orthogonal")
+    case = prepare(load_case("orthogonal"))
     first = RunDirectory(tmp_path, case)
     code = json.loads((first.checkpoint / CODE_FILE).read_text())
     assert code["exubrush"] == first.code["exubrush"]

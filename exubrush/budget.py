@@ -1,0 +1,169 @@
+"""What a run will cost, and whether its settings resolve its motion (pure).
+
+Checked by :func:`exubrush.prepared.prepare` before any Exudyn system is built, so that a
+run which would take days, exhaust memory or step over its own motion is refused at once
+with one line: the estimate, the limit and the setting that changes it.
+
+Estimates (per run, internal units):
+
+- steps: end time / solver.step_size per solved system. The solver cuts steps where it
+  must, so this is a lower bound of the real count (the default orthogonal run takes about
+  four times as many for the whole head);
+- memory: the recorded node positions at the output interval, kept for every bristle
+  (3 doubles per node and row), times 3 for the copies made while the groups' results are
+  joined, plus the coordinates kept for the viewer.
+
+Resolution: the largest step must resolve the motion, or the solver steps over it (a
+20 s step on a 12 s slide period ran to the end with a peak force 9.4x the right one):
+at least 100 steps per slide period, 20 per approach, 4 per hold, and no step longer than
+the spacing of a slide CSV's samples. The output interval must fit into the run at least
+twice, or the run records nothing but its start.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+STEPS_PER_PERIOD = 100
+STEPS_PER_APPROACH = 20
+STEPS_PER_HOLD = 4
+COPIES = 3  # node histories held at once while joining the groups' results
+DOUBLE = 8  # bytes
+C_INT = 2**31 - 1  # Exudyn's step counter is a C int
+
+
+@dataclass(frozen=True)
+class WorkEstimate:
+    """The size of a run before it starts.
+
+    Attributes
+    ----------
+    bristles : int
+        Bristles in the head.
+    systems : int
+        Exudyn systems solved.
+    steps : int
+        Time steps per system at the largest step (a lower bound).
+    output_rows : int
+        Force rows written.
+    memory : float
+        Memory of the recorded results [B] (estimate).
+    """
+
+    bristles: int
+    systems: int
+    steps: int
+    output_rows: int
+    memory: float
+
+
+def estimate(case, bristles: int, end_time: float) -> WorkEstimate:
+    """The work of ``case`` with ``bristles`` bristles and ``end_time`` [s]."""
+    rows = math.floor(end_time / case.output.interval) + 1
+    nodes = case.model.segments if case.model.kind == "dfm" else 1
+    memory = float(rows) * bristles * nodes * 3 * DOUBLE * COPIES
+    if case.output.solution_file:
+        coordinates = 6 + bristles * nodes * 7  # handle; Euler parameters: 7 per node
+        memory += (math.floor(end_time / case.output.shape_interval) + 1) * coordinates * DOUBLE
+    groups = 1 if case.solver.partition == "coupled" else bristles
+    return WorkEstimate(bristles=bristles, systems=groups,
+                        steps=math.ceil(end_time / case.solver.step_size),
+                        output_rows=rows, memory=memory)
+
+
+def over_size(case, bristles: int) -> list[str]:
+    """The limits (case.limits) on the head's size that ``case`` exceeds, checked before
+    any bristle is built."""
+    limits = case.limits
+    found = []
+    if bristles > limits.bristles:
+        found.append(f"the head has {bristles:,} bristles, more than limits.bristles = "
+                     f"{limits.bristles:,}; to run it anyway, --set limits.bristles={bristles}")
+    segments = case.model.segments
+    if case.model.kind == "dfm" and segments > limits.segments:
+        found.append(f"model.segments = {segments:,} is more than limits.segments = "
+                     f"{limits.segments:,}; to run it anyway, --set limits.segments={segments}")
+    return found
+
+
+def over_work(case, work: WorkEstimate) -> list[str]:
+    """The limits (case.limits) on steps and memory that ``work`` exceeds."""
+    limits = case.limits
+    found = []
+    needs = f"the run needs at least {work.steps:,} time steps per system (end time / "
+    if work.steps > C_INT:
+        found.append(f"{needs}solver.step_size), more than Exudyn can count "
+                     f"({C_INT:,}); shorten the run or take a longer step")
+    elif work.steps > limits.steps:
+        found.append(f"{needs}solver.step_size), more than limits.steps = {limits.steps:,}; "
+                     f"to run it anyway, --set limits.steps={work.steps}")
+    if work.memory > limits.memory:
+        needed = math.ceil(work.memory / 1e9)
+        found.append(f"its recorded results would take about {work.memory / 1e9:.3g} GB, more "
+                     f"than limits.memory = {limits.memory / 1e9:.3g} GB; a longer "
+                     f"output.interval records less, or --set limits.memory='{needed} GB'")
+    return found
+
+
+def unresolved(case, motion) -> list[str]:
+    """One message for each time scale of ``motion`` that the settings do not resolve."""
+    step = case.solver.step_size
+    m = case.motion
+    scales = [(motion.approach_duration / STEPS_PER_APPROACH,
+               f"{STEPS_PER_APPROACH} steps per approach (motion.approach_duration)")]
+    if m.profile == "sine":
+        scales.append((m.period / STEPS_PER_PERIOD,
+                       f"{STEPS_PER_PERIOD} steps per slide period (motion.period)"))
+    else:
+        scales.append((motion.slide.sample_spacing,
+                       "one step per sample spacing of the slide CSV"))
+    if motion.hold_duration > 0.0:
+        scales.append((motion.hold_duration / STEPS_PER_HOLD,
+                       f"{STEPS_PER_HOLD} steps per hold (motion.hold_duration)"))
+    bound, why = min(scales)
+    found = []
+    if step > bound * (1 + 1e-12):  # the tightest scale; the others follow from it
+        found.append(f"solver.step_size {_seconds(step)} does not resolve the motion: "
+                     f"{why} need a step of at most {_seconds(bound)}")
+    for key, interval in (("interval", case.output.interval),
+                          ("shape_interval", case.output.shape_interval)):
+        if interval > motion.end_time / 2:
+            found.append(f"output.{key} {_seconds(interval)} is more than half the run "
+                         f"({_seconds(motion.end_time)}): it would record only the start; "
+                         f"use at most {_seconds(motion.end_time / 2)}")
+    return found
+
+
+def _seconds(value: float) -> str:
+    return f"{value * 1e3:.4g} ms" if value < 1.0 else f"{value:.4g} s"
+
+
+def motion_warnings(case, motion) -> list[str]:
+    """Where a slide CSV moves faster than the step resolves (a warning, not a refusal).
+
+    Within one step of ``solver.step_size`` the slide speed should change by less than the
+    friction law's ``contact.static_velocity`` (the speed over which friction goes from
+    sticking to sliding); a measured profile with a jump or a sharp corner can demand more,
+    and the solver then cuts its step there (slower, not wrong).
+    """
+    if case.motion.profile != "csv":
+        return []
+    slide = motion.slide
+    times = slide.knots
+    edge = 1e-9 * slide.sample_spacing
+    probes = np.concatenate([times[:-1] + edge, times[1:] - edge])  # a'' is linear between
+    accelerations = np.abs([slide.evaluate(t)[2] for t in probes])
+    worst = int(np.argmax(accelerations))
+    change = accelerations[worst] * case.solver.step_size
+    allowed = case.contact.static_velocity
+    if change <= allowed:
+        return []
+    resolving = allowed / accelerations[worst]
+    return [f"the slide CSV accelerates at up to {accelerations[worst]:.4g} mm/s² (t = "
+            f"{probes[worst]:.4g} s after the slide starts): the slide speed changes by "
+            f"{change:.3g} mm/s within one {_seconds(case.solver.step_size)} step, more than "
+            f"contact.static_velocity = {allowed:g} mm/s; the solver will cut its steps there "
+            f"(a step of {_seconds(resolving)} resolves it)"]
