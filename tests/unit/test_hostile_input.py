@@ -98,8 +98,9 @@ def _csv_case(tmp_path, content: bytes | None, overrides=()):
 @pytest.mark.parametrize("content, message", [
     (b"\xff\xfe\x00t\x00i\x00m\x00e", "is not UTF-8 text (byte 0)"),
     (b"time [s],slider_position [mm]\n0,0\n1,\xe9\n", "is not UTF-8 text"),
-    (SLIDE.replace("1,5", "0.0005,5").encode(), "solver.step_size 2 ms does not resolve the "
-     "motion: one step per sample spacing of the slide CSV need a step of at most 0.5 ms"),
+    (b"time [s],slider_position [mm]\n0,0\n0.05,5\n0.1,0\n", "solver.step_size 2 ms does not "
+     "resolve the motion: 100 steps over the slide CSV's duration need a step of at most "
+     "1 ms"),
 ])
 def test_a_hostile_slide_csv_is_refused(tmp_path, content, message):
     with pytest.raises(ParameterError, match="motion.csv_file|step_size") as info:
