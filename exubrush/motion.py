@@ -78,11 +78,12 @@ class TabulatedSlide:
     """Slide read from measured samples, interpolated by a monotone cubic (PCHIP).
 
     Between two samples the slider moves monotonically from one to the other, so it never
-    leaves the range of the data (a C² spline overshoots a step in the data by about 11 %
-    and rings after a corner). The price: velocity is continuous but acceleration jumps at
-    the samples, and the velocity is zero wherever the data have a local extremum. The
-    interpolant starts at position 0 (the first sample is taken as the origin); its first
-    derivative is the drive velocity, so position and velocity agree.
+    leaves the range of the data (a C² spline through a 0 -> 10 mm step in 1 s samples
+    reaches 11.08 mm and -1.08 mm, and rings after a corner). The price: velocity is
+    continuous but acceleration jumps at the samples, and the velocity is zero wherever the
+    data have a local extremum. The interpolant starts at position 0 (the first sample is
+    taken as the origin); its first derivative is the drive velocity, so position and
+    velocity agree.
     """
 
     def __init__(self, times: np.ndarray, positions: np.ndarray):
