@@ -19,8 +19,8 @@ from exubrush.parameters.fields import to_plain
 from exubrush.prepared import PreparedCase
 from exubrush.provenance import code_identity
 from exubrush.results import Results
+from exubrush.solution import GroupSolution, SolverStatistics
 from exubrush.solution_files import head_coordinates
-from exubrush.solve import GroupSolution, SolverStatistics
 
 
 @dataclass(frozen=True)
@@ -139,9 +139,13 @@ def _statistics(ran: list[GroupSolution]) -> dict[str, int]:
 
 
 def _exudyn_version() -> str:
-    import exudyn
+    """Exudyn's version from its package metadata (without importing it)."""
+    from importlib import metadata
 
-    return exudyn.__version__
+    try:
+        return metadata.version("exudyn")
+    except metadata.PackageNotFoundError:
+        return "unknown"
 
 
 def stop_message(case, solutions: Sequence[GroupSolution | None], interrupted: bool) -> str:

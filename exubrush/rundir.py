@@ -32,8 +32,8 @@ from exubrush.files import atomic_file
 from exubrush.parameters.fields import to_plain
 from exubrush.prepared import PreparedCase
 from exubrush.provenance import code_identity
+from exubrush.solution import GroupSolution
 from exubrush.solution_files import SOLUTION_FILE
-from exubrush.solve import GroupSolution
 
 CHECKPOINT = ".checkpoint"
 CODE_FILE = "code.json"  # the exubrush version and commit that wrote the checkpoint

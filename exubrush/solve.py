@@ -3,18 +3,15 @@
 This is the unit of work an executor (exubrush.execution) runs, in this process, in a
 worker process or on a cluster: :func:`solve_group` takes the prepared case and the
 indices of the bristles, and returns a :class:`GroupSolution`, a typed, picklable record
-of plain arrays. It does not know where it runs: progress and stop requests go through a
-:class:`SolveMonitor` the executor provides.
+of plain arrays (exubrush.solution). It does not know where it runs: progress and stop
+requests go through a :class:`SolveMonitor` the executor provides.
 """
 
 from __future__ import annotations
 
-import dataclasses
-import json
 import os
 import tempfile
 import time
-from dataclasses import dataclass
 from typing import Protocol
 
 import exudyn as exu
@@ -23,6 +20,7 @@ import numpy as np
 from exubrush.prepared import PreparedCase
 from exubrush.sanity import beyond_bound_message
 from exubrush.scene import build_scene
+from exubrush.solution import GroupSolution, SolverStatistics
 from exubrush.solution_files import read_coordinate_file
 from exubrush.solver import dynamic_settings, record_coordinates
 
@@ -37,81 +35,6 @@ class SolveMonitor(Protocol):
 
     def stop_requested(self) -> bool:
         """Whether the solve should end now and return what it has (Ctrl-C, cancellation)."""
-
-
-@dataclass(frozen=True)
-class SolverStatistics:
-    """Counters of Exudyn's dynamic solver for one or more systems."""
-
-    steps: int = 0
-    newton_iterations: int = 0
-    jacobian_updates: int = 0
-    rejected_modified_newton_steps: int = 0
-
-    def __add__(self, other: SolverStatistics) -> SolverStatistics:
-        return SolverStatistics(*(a + b for a, b in zip(dataclasses.astuple(self),
-                                                        dataclasses.astuple(other), strict=True)))
-
-
-@dataclass(frozen=True)
-class GroupSolution:
-    """The outcome of solving one bristle group, on the case's output grid.
-
-    Attributes
-    ----------
-    time : ndarray (n,)
-        Multiples of ``output.interval`` up to the last sane record [s].
-    reaction : ndarray (n, 3)
-        Drive reaction: the force the handle's coordinates exert on the drive [N].
-    nodes : ndarray (n, bristles, nodes, 3)
-        Bristle node positions, head frame fixed to the surface [mm].
-    coordinates : ndarray (m, 1 + coordinates) or None
-        Rows (time [s], ODE2 coordinates) at ``output.shape_interval``, if the case keeps
-        them (``output.solution_file``).
-    statistics : SolverStatistics
-        Exudyn's step, Newton and Jacobian counts.
-    completed : bool
-        Whether the solve reached the end time.
-    message : str
-        Why it stopped early ("" if it completed).
-    wall_time : float
-        Wall time of Exudyn's solve [s].
-    contacts : int
-        Contact elements in the system.
-    handle_mass : float
-        Mass of the group's handle [t].
-    """
-
-    time: np.ndarray
-    reaction: np.ndarray
-    nodes: np.ndarray
-    coordinates: np.ndarray | None
-    statistics: SolverStatistics
-    completed: bool
-    message: str
-    wall_time: float
-    contacts: int
-    handle_mass: float
-
-    ARRAYS = ("time", "reaction", "nodes", "coordinates")
-
-    def to_arrays(self) -> dict[str, np.ndarray]:
-        """Plain arrays for ``np.savez`` (the scalars as one JSON text), read back by
-        :meth:`from_arrays`."""
-        scalars = {f.name: getattr(self, f.name) for f in dataclasses.fields(self)
-                   if f.name not in self.ARRAYS}
-        scalars["statistics"] = dataclasses.asdict(self.statistics)
-        arrays = {name: getattr(self, name) for name in self.ARRAYS
-                  if getattr(self, name) is not None}
-        return {"scalars": np.array(json.dumps(scalars)), **arrays}
-
-    @classmethod
-    def from_arrays(cls, data) -> GroupSolution:
-        """Inverse of :meth:`to_arrays` (``data``: a mapping such as an open ``.npz``)."""
-        scalars = json.loads(str(data["scalars"]))
-        scalars["statistics"] = SolverStatistics(**scalars["statistics"])
-        arrays = {name: (data[name] if name in data else None) for name in cls.ARRAYS}
-        return cls(**arrays, **scalars)
 
 
 def solve_group(prepared: PreparedCase, selection: tuple[int, ...],

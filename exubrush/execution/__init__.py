@@ -16,7 +16,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 from exubrush.prepared import PreparedCase
-from exubrush.solve import GroupSolution
+from exubrush.solution import GroupSolution
 
 
 @dataclass(frozen=True)

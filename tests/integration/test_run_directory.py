@@ -158,7 +158,7 @@ def test_a_resumed_group_keeps_the_coordinates_for_the_viewer(tmp_path):
     from exubrush.parameters.io import load_case
     from exubrush.prepared import prepare
     from exubrush.rundir import RunDirectory
-    from exubrush.solve import GroupSolution, SolverStatistics
+    from exubrush.solution import GroupSolution, SolverStatistics
 
     case = prepare(load_case("orthogonal", ["output.solution_file=true"]))
     solution = GroupSolution(

@@ -1,0 +1,89 @@
+"""What solving one bristle group gives back: typed, picklable, free of Exudyn.
+
+The executor moves these records between processes (or cluster workers), the run directory
+stores them as checkpoints and the assembly turns them into results; none of those needs
+Exudyn, so this module does not import it (exubrush.solve makes them).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+from dataclasses import dataclass
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class SolverStatistics:
+    """Counters of Exudyn's dynamic solver for one or more systems."""
+
+    steps: int = 0
+    newton_iterations: int = 0
+    jacobian_updates: int = 0
+    rejected_modified_newton_steps: int = 0
+
+    def __add__(self, other: SolverStatistics) -> SolverStatistics:
+        return SolverStatistics(*(a + b for a, b in zip(dataclasses.astuple(self),
+                                                        dataclasses.astuple(other), strict=True)))
+
+
+@dataclass(frozen=True)
+class GroupSolution:
+    """The outcome of solving one bristle group, on the case's output grid.
+
+    Attributes
+    ----------
+    time : ndarray (n,)
+        Multiples of ``output.interval`` up to the last sane record [s].
+    reaction : ndarray (n, 3)
+        Drive reaction: the force the handle's coordinates exert on the drive [N].
+    nodes : ndarray (n, bristles, nodes, 3)
+        Bristle node positions, head frame fixed to the surface [mm].
+    coordinates : ndarray (m, 1 + coordinates) or None
+        Rows (time [s], ODE2 coordinates) at ``output.shape_interval``, if the case keeps
+        them (``output.solution_file``).
+    statistics : SolverStatistics
+        Exudyn's step, Newton and Jacobian counts.
+    completed : bool
+        Whether the solve reached the end time.
+    message : str
+        Why it stopped early ("" if it completed).
+    wall_time : float
+        Wall time of Exudyn's solve [s].
+    contacts : int
+        Contact elements in the system.
+    handle_mass : float
+        Mass of the group's handle [t].
+    """
+
+    time: np.ndarray
+    reaction: np.ndarray
+    nodes: np.ndarray
+    coordinates: np.ndarray | None
+    statistics: SolverStatistics
+    completed: bool
+    message: str
+    wall_time: float
+    contacts: int
+    handle_mass: float
+
+    ARRAYS = ("time", "reaction", "nodes", "coordinates")
+
+    def to_arrays(self) -> dict[str, np.ndarray]:
+        """Plain arrays for ``np.savez`` (the scalars as one JSON text), read back by
+        :meth:`from_arrays`."""
+        scalars = {f.name: getattr(self, f.name) for f in dataclasses.fields(self)
+                   if f.name not in self.ARRAYS}
+        scalars["statistics"] = dataclasses.asdict(self.statistics)
+        arrays = {name: getattr(self, name) for name in self.ARRAYS
+                  if getattr(self, name) is not None}
+        return {"scalars": np.array(json.dumps(scalars)), **arrays}
+
+    @classmethod
+    def from_arrays(cls, data) -> GroupSolution:
+        """Inverse of :meth:`to_arrays` (``data``: a mapping such as an open ``.npz``)."""
+        scalars = json.loads(str(data["scalars"]))
+        scalars["statistics"] = SolverStatistics(**scalars["statistics"])
+        arrays = {name: (data[name] if name in data else None) for name in cls.ARRAYS}
+        return cls(**arrays, **scalars)
