@@ -87,6 +87,7 @@ def test_a_fault_ends_in_one_line(tmp_path, args, status, message):
     assert _tree(tmp_path) == before  # a refused command writes nothing
 
 
+@pytest.mark.slow  # a real run
 def test_a_case_name_never_leads_outside_results(tmp_path):
     work = tmp_path / "work"
     work.mkdir()
@@ -98,6 +99,7 @@ def test_a_case_name_never_leads_outside_results(tmp_path):
     assert inside, changed
 
 
+@pytest.mark.slow  # a real run
 def test_a_full_disk_while_saving_keeps_the_checkpoint_and_says_so(tmp_path, monkeypatch):
     from click.testing import CliRunner
 
