@@ -28,6 +28,7 @@ class ParameterError(ValueError):
 MAGNITUDE = (1e-20, 1e20)
 C_INT = 2**31 - 1  # Exudyn takes counts as C ints
 
+
 def param(
     default: Any,
     doc: str,
@@ -351,15 +352,11 @@ def _check_value(key: str, value: Any, meta: dict, annotation: Any) -> None:
             shape = wanted.__name__ if entry_type is None else f"a tuple of {wanted.__name__}"
             raise ParameterError(f"{key}: expected {shape}, got {value!r}")
         return
-    if annotation is bool or meta["unit"] == "text":
+    if annotation in (bool, int) or meta["unit"] == "text":  # no unit to read: same path
         _read_scalar(key, value, meta, annotation)
         return
     if isinstance(value, bool) or not isinstance(value, int | float):
         raise ParameterError(f"{key}: expected a number in {meta['unit']}, got {value!r}")
-    if annotation is int and not isinstance(value, int):
-        raise ParameterError(f"{key}: expected a whole number, got {value!r}")
-    if annotation is int and abs(value) > C_INT:
-        raise ParameterError(f"{key}: {value} does not fit a 32-bit integer (at most {C_INT})")
     if not math.isfinite(value):
         raise ParameterError(f"{key}: {value!r} is not a finite number")
     _check_range(key, value, repr(value), meta)
