@@ -95,13 +95,24 @@ class TabulatedSlide:
         self._t0 = float(times[0])
         self._spline = PchipInterpolator(times - times[0], positions - positions[0])
         self.duration = float(times[-1] - times[0])
-        self.sample_spacing = float(np.min(np.diff(times)))  # smallest, [s]
-        self.knots = times - times[0]  # sample times from the slide's start [s]
 
     def evaluate(self, tau: float) -> tuple[float, float, float]:
         """Position [mm], velocity [mm/s] and acceleration [mm/s²] at slide time τ [s]."""
         tau = min(max(tau, 0.0), self.duration)
         return tuple(float(self._spline(tau, k)) for k in range(3))
+
+    def peak_acceleration(self) -> tuple[float, float]:
+        """Largest |acceleration| [mm/s²] and the slide time τ [s] where it is reached.
+
+        The acceleration of the monotone cubic is linear within each sample interval, so its
+        extremes are the one-sided values at the interval ends.
+        """
+        knots = self._spline.x
+        edge = 1e-9 * float(np.min(np.diff(knots)))
+        probes = np.concatenate([knots[:-1] + edge, knots[1:] - edge])
+        accelerations = np.abs(self._spline(probes, 2))
+        worst = int(np.argmax(accelerations))
+        return float(accelerations[worst]), float(probes[worst])
 
 
 def read_slide_csv(path: str | Path) -> TabulatedSlide:
