@@ -101,18 +101,25 @@ class TabulatedSlide:
         tau = min(max(tau, 0.0), self.duration)
         return tuple(float(self._spline(tau, k)) for k in range(3))
 
-    def peak_acceleration(self) -> tuple[float, float]:
-        """Largest |acceleration| [mm/s²] and the slide time τ [s] where it is reached.
+    def largest_speed_change(self, window: float) -> tuple[float, float]:
+        """Largest change of the slide speed [mm/s] within any interval of ``window`` [s],
+        and the slide time τ [s] where that interval starts.
 
-        The acceleration of the monotone cubic is linear within each sample interval, so its
-        extremes are the one-sided values at the interval ends.
+        The speed is sampled at a quarter of ``window`` (at most a million samples: a longer
+        profile is sampled more coarsely, which can only overstate the change). Not the peak
+        acceleration times the window: at a local extremum of finely sampled data the
+        monotone cubic's acceleration spikes within one sample interval, while the speed
+        hardly changes.
         """
-        knots = self._spline.x
-        edge = 1e-9 * float(np.min(np.diff(knots)))
-        probes = np.concatenate([knots[:-1] + edge, knots[1:] - edge])
-        accelerations = np.abs(self._spline(probes, 2))
-        worst = int(np.argmax(accelerations))
-        return float(accelerations[worst]), float(probes[worst])
+        spacing = max(window / 4.0, self.duration / 1e6)
+        times = np.arange(0.0, self.duration + spacing, spacing)
+        speeds = self._spline(np.minimum(times, self.duration), 1)
+        span = max(1, round(window / spacing))
+        changes = np.abs(speeds[span:] - speeds[:-span])
+        if changes.size == 0:
+            return float(abs(speeds[-1] - speeds[0])), 0.0
+        worst = int(np.argmax(changes))
+        return float(changes[worst]), float(times[worst])
 
 
 def read_slide_csv(path: str | Path) -> TabulatedSlide:
