@@ -12,6 +12,7 @@ ends), then holds for ``hold`` seconds before sliding starts.
 
 from __future__ import annotations
 
+import hashlib
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -100,6 +101,13 @@ class TabulatedSlide:
         """Position [mm], velocity [mm/s] and acceleration [mm/s²] at slide time τ [s]."""
         tau = min(max(tau, 0.0), self.duration)
         return tuple(float(self._spline(tau, k)) for k in range(3))
+
+    @property
+    def digest(self) -> str:
+        """SHA-256 of the interpolant (sample times and polynomial coefficients): equal for
+        equal profiles, whatever else the file holds (comments, other columns)."""
+        spline = self._spline
+        return hashlib.sha256(spline.x.tobytes() + spline.c.tobytes()).hexdigest()
 
     def largest_speed_change(self, window: float) -> tuple[float, float]:
         """Largest change of the slide speed [mm/s] within any interval of ``window`` [s],

@@ -10,9 +10,7 @@ unreadable slide CSV) are raised here as :class:`~exubrush.parameters.fields.Par
 
 from __future__ import annotations
 
-import hashlib
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 
@@ -27,7 +25,7 @@ from exubrush.budget import (
 from exubrush.kinematics import SLIDE_AXES
 from exubrush.models.geometry import BristleGeometry, can_reach, head_bristles
 from exubrush.models.howell import howell_parameters
-from exubrush.motion import HeadMotion, head_motion
+from exubrush.motion import HeadMotion, TabulatedSlide, head_motion
 from exubrush.parameters.case import Case
 from exubrush.parameters.fields import ParameterError
 from exubrush.reference.howell_fit import fit_prb_parameters
@@ -78,8 +76,8 @@ class PreparedCase:
     work : WorkEstimate
         What the run will cost (exubrush.budget), within ``case.limits``.
     inputs : tuple of (str, str)
-        (key, SHA-256 of the file's bytes) of every input file the case names, so that a
-        resume can tell a changed file from the same one (exubrush.rundir).
+        (key, SHA-256 of what was read from it) for every input file the case names, so
+        that a resume can tell a changed file from the same one (exubrush.rundir).
     warnings : tuple of str
         What the user should know before the run (e.g. a slide CSV faster than the step).
     """
@@ -143,20 +141,17 @@ def prepare(case: Case) -> PreparedCase:
         force_limits=static_force_limits(case, bristles),
         groups=bristle_groups(case, len(bristles)),
         work=work,
-        inputs=input_digests(case),
+        inputs=input_digests(motion),
         warnings=tuple(motion_warnings(case, motion)),
     )
 
 
-def input_digests(case: Case) -> tuple[tuple[str, str], ...]:
-    """(key, SHA-256) of every input file of ``case`` (read after it was read once)."""
-    if case.motion.profile != "csv":
-        return ()
-    path = Path(case.motion.csv_file)
-    try:
-        return (("motion.csv_file", hashlib.sha256(path.read_bytes()).hexdigest()),)
-    except OSError as err:
-        raise ParameterError(f"motion.csv_file: {path}: {err.strerror}") from None
+def input_digests(motion: HeadMotion) -> tuple[tuple[str, str], ...]:
+    """(key, SHA-256) of what the run read from each input file: the slide profile as it
+    was parsed, so the file is not read twice and the hash is of the data the run uses."""
+    if isinstance(motion.slide, TabulatedSlide):
+        return (("motion.csv_file", motion.slide.digest),)
+    return ()
 
 
 def _refuse(problems: list[str]) -> None:

@@ -4,9 +4,9 @@ A run writes into one directory. Before it starts:
 
 - a new or empty directory is used as it is;
 - a directory holding an unfinished run of the *same* case (same parameters and the same
-  content of every input file, e.g. a slide CSV) written by
-  the same code (exubrush version and, where known, git commit) is resumed: the bristle
-  groups already solved are read back, not solved again;
+  profile read from every input file, e.g. a slide CSV) written by the same code
+  (exubrush version and, where known, git commit) is resumed: the bristle groups already
+  solved are read back, not solved again;
 - a checkpoint written by another version of the code is refused with both versions named:
   a model fix that leaves the parameters unchanged must not mix old and new bristles;
 - any other exubrush results (another case, or a finished run) are refused unless the
