@@ -17,7 +17,7 @@ import numpy as np
 from exubrush.kinematics import handle_history, head_force
 from exubrush.parameters.fields import to_plain
 from exubrush.prepared import PreparedCase
-from exubrush.provenance import code_identity
+from exubrush.provenance import code_identity, package_version
 from exubrush.results import Results
 from exubrush.solution import GroupSolution, SolverStatistics
 from exubrush.solution_files import head_coordinates
@@ -84,7 +84,7 @@ def assemble_results(prepared: PreparedCase, solutions: Sequence[GroupSolution |
         "model": case.model.kind,
         "parameters": to_plain(case),
         "derived": _derived(prepared, ran, facts),
-        "versions": {**code_identity(), "exudyn": _exudyn_version(),
+        "versions": {**code_identity(), "exudyn": package_version("exudyn"),
                      "python": platform.python_version()},
         "solver_statistics": _statistics(ran),
         "sanity": {"peak_normal_force_N": peak, "normal_force_bound_N": bound,
@@ -136,16 +136,6 @@ def _statistics(ran: list[GroupSolution]) -> dict[str, int]:
     total = functools.reduce(lambda a, b: a + b, (s.statistics for s in ran),
                              SolverStatistics())
     return total.__dict__.copy() if ran else {}
-
-
-def _exudyn_version() -> str:
-    """Exudyn's version from its package metadata (without importing it)."""
-    from importlib import metadata
-
-    try:
-        return metadata.version("exudyn")
-    except metadata.PackageNotFoundError:
-        return "unknown"
 
 
 def stop_message(case, solutions: Sequence[GroupSolution | None], interrupted: bool) -> str:

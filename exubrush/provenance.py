@@ -11,10 +11,11 @@ UNKNOWN_VERSION = "0+unknown"  # running from a source tree that was never insta
 
 
 @functools.cache
-def package_version() -> str:
-    """exubrush's version from the installed package metadata (the one version source)."""
+def package_version(name: str = "exubrush") -> str:
+    """The version of the installed package ``name`` from its metadata (for exubrush, the
+    one version source), read without importing the package."""
     try:
-        return metadata.version("exubrush")
+        return metadata.version(name)
     except metadata.PackageNotFoundError:
         return UNKNOWN_VERSION
 
