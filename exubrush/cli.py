@@ -44,7 +44,7 @@ class _Commands(click.Group):
             return super().invoke(ctx)
         except OSError as err:
             _fail(os_message(err))
-        except UnicodeError as err:
+        except UnicodeDecodeError as err:  # e.g. a run.json that is not text
             _fail(f"a file is not UTF-8 text ({err.reason} at byte {err.start})")
         except KeyboardInterrupt:
             _fail("interrupted before the run started; nothing was written",

@@ -152,9 +152,12 @@ def read_results(directory: str | Path) -> Results:
         raise ResultsError(f"{str(directory)!r} holds no run.json: it is not an exubrush "
                            "result directory (make one with 'exubrush run CASE --out DIR')")
     try:
-        metadata = json.loads(meta_path.read_text())
+        metadata = json.loads(meta_path.read_bytes().decode("utf-8"))
     except json.JSONDecodeError as err:
         raise ResultsError(f"{str(meta_path)!r} is not valid JSON ({err})") from None
+    except UnicodeDecodeError as err:
+        raise ResultsError(f"{str(meta_path)!r} is not UTF-8 text (byte {err.start}): not "
+                           "written by exubrush") from None
     if not (directory / "forces.csv").is_file():
         raise ResultsError(f"{str(directory)!r} has no forces.csv (run status "
                            f"{metadata.get('status', 'unknown')!r}): nothing to read")

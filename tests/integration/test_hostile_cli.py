@@ -67,6 +67,8 @@ def _saved_run(directory):
      "plain.txt/compare: Not a directory"),
     (["frames", "plain.txt"], 2, "'plain.txt' holds no run.json"),
     (["view", "plain.txt/run"], 2, "'plain.txt/run' holds no run.json"),
+    (["frames", "garbled"], 2, "'garbled/run.json' is not UTF-8 text (byte 0)"),
+    (["compare", "garbled", "measured.csv"], 2, "'garbled/run.json' is not UTF-8 text"),
 ])
 def test_a_fault_ends_in_one_line(tmp_path, args, status, message):
     (tmp_path / "plain.txt").write_text("not a directory\n")
@@ -78,6 +80,8 @@ def test_a_fault_ends_in_one_line(tmp_path, args, status, message):
         "time [s],slider_position [mm],normal_force [N],tangential_force [N]\n"
         + "".join(f"{t:.2f},{np.sin(t):.6f},1,0.5\n" for t in np.linspace(0, 2, 201)))
     _saved_run(tmp_path / "saved")
+    (tmp_path / "garbled").mkdir()
+    (tmp_path / "garbled" / "run.json").write_bytes(b"\xff\xfe\x00\x01")
     before = _tree(tmp_path)
     done = _run(tmp_path, *args)
     assert done.returncode == status, done.stderr
