@@ -57,8 +57,8 @@ class RunDirectoryError(ValueError):
 
 
 def case_fingerprint(prepared: PreparedCase) -> str:
-    """Hash of every parameter but the limits (they change no result) and of the content
-    of every input file: equal means the same run (the code is checked apart)."""
+    """Hash of every parameter but the limits (they change no result) and of the data read
+    from every input file: equal means the same run (the code is checked apart)."""
     parameters = to_plain(prepared.case)
     parameters.pop("limits", None)
     text = json.dumps({"case": parameters, "inputs": dict(prepared.inputs)}, sort_keys=True)
@@ -100,12 +100,13 @@ class RunDirectory:
             )
         stored = self._stored_fingerprint()
         if present and not overwrite:
-            if stored is not None and not self._finished_run():
+            finished = self._finished_run()
+            if stored is not None and not finished:
                 self._check_code()
-            if stored == self.fingerprint and not self._finished_run():
+            if stored == self.fingerprint and not finished:
                 self.resumed = len(self.stored_groups())
                 return
-            what = ("complete results" if self._finished_run() else
+            what = ("complete results" if finished else
                     "an unfinished run of another case, or of the same case with other "
                     "input files (e.g. a changed slide CSV)")
             raise RunDirectoryError(
@@ -138,7 +139,10 @@ class RunDirectory:
 
     def _stored_fingerprint(self) -> str | None:
         path = self.checkpoint / "fingerprint"
-        return path.read_text().strip() if path.is_file() else None
+        try:
+            return path.read_text().strip() if path.is_file() else None
+        except (OSError, UnicodeDecodeError):  # unreadable: no run to resume
+            return None
 
     def _finished_run(self) -> bool:
         path = self.path / "run.json"
