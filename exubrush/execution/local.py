@@ -70,7 +70,9 @@ class ProcessExecutor(Executor):
                 if stop.is_set():  # running solves return what they have at their next check
                     for future in pending:
                         future.cancel()
-            _drain(updates, advance)
+        # after the pool has shut down: a worker's last report may reach the queue after
+        # its result, and is flushed only when the worker exits
+        _drain(updates, advance)
         return stop.is_set()
 
 
