@@ -1,4 +1,4 @@
-"""Command line: ``exubrush run``, ``case``, ``compare``, ``frames`` and ``view``.
+"""Command line: ``exubrush run``, ``sweep``, ``case``, ``compare``, ``frames`` and ``view``.
 
 Every fault ends in one line on standard error and an exit status: 2 for input that cannot
 be used (a parameter, case file, CSV or path), 1 for a run that failed or results that
@@ -9,6 +9,7 @@ is not text) is reported with the path and the reason, never as a traceback.
 
 from __future__ import annotations
 
+import contextlib
 import signal
 import sys
 from pathlib import Path
@@ -76,7 +77,13 @@ def main() -> None:
                    "(= the defaults) or accurate; --segments and --set override it.")
 @click.option("--viewer", is_flag=True, help="Also keep every node's coordinates at the "
               "shape interval, to open the run with 'exubrush view' (output.solution_file = true).")
-def run(case, model, segments, periods, out, overrides, overwrite, quiet, preset, viewer):
+@click.option("--scheduler", metavar="ADDRESS", help="Solve the bristle groups on a Dask "
+              "cluster: tcp://HOST:PORT of its scheduler, or 'local' for one started here "
+              "[default: a process pool on this machine].")
+@click.option("--workers", type=click.IntRange(min=1),
+              help="Processes of the local pool or local Dask cluster [default: every core].")
+def run(case, model, segments, periods, out, overrides, overwrite, quiet, preset, viewer,
+        scheduler, workers):
     """Simulate CASE (orthogonal, parallel or a TOML case file) and save the results.
 
     Finished bristles are kept in OUT/.checkpoint while the run goes on: after Ctrl-C, a
@@ -117,8 +124,11 @@ def run(case, model, segments, periods, out, overrides, overwrite, quiet, preset
     # and returns; one that arrives after it (assembling, writing: a second or two) is let
     # pass, so the results are written whole
     try:
-        with signals_redirected(signal.SIG_IGN):
-            results = simulate(prepared, progress=not quiet, directory=store)
+        with signals_redirected(signal.SIG_IGN), _executor(scheduler, workers) as executor:
+            if executor is not None:
+                click.echo(f"solving on {executor.describe()}", err=True)
+            results = simulate(prepared, progress=not quiet, directory=store, workers=workers,
+                               executor=executor)
             results.save(directory)
     except OSError as err:
         _fail(f"results not written: {os_message(err)}; the finished bristles stay in "
@@ -142,6 +152,106 @@ def run(case, model, segments, periods, out, overrides, overwrite, quiet, preset
     click.echo(f"exubrush: {meta['status']}: {meta['message']}; {saved} (run.json: status "
                f"{meta['status']!r})", err=True)
     sys.exit(INTERRUPTED if meta["status"] == "interrupted" else RUN_FAILED)
+
+
+@contextlib.contextmanager
+def _executor(scheduler: str | None, workers: int | None, timeout: float | None = None,
+              label: str = "--scheduler"):
+    """The Dask executor ``scheduler`` asks for (None: the local process pool); a cluster
+    that cannot be reached ends the command with exit status 2, before anything is written."""
+    if scheduler is None:
+        yield None
+        return
+    from exubrush.execution.cluster import CONNECT_TIMEOUT, ClusterError, dask_executor
+
+    with contextlib.ExitStack() as stack:
+        try:
+            executor = stack.enter_context(
+                dask_executor(scheduler, workers, timeout or CONNECT_TIMEOUT, label))
+        except ClusterError as err:
+            _fail(str(err))
+        yield executor
+
+
+@main.command()
+@click.argument("sweep_file", required=False, type=click.Path())
+@click.option("--out", type=click.Path(),
+              help="Sweep folder [default: results/sweeps/NAME].")
+@click.option("--scheduler", metavar="ADDRESS", help="tcp://HOST:PORT of a Dask scheduler, "
+              "or 'local' for a Dask cluster started here [default: the sweep file's "
+              "execution.scheduler, else local].")
+@click.option("--workers", type=click.IntRange(min=1),
+              help="Worker processes of a local cluster [default: every core].")
+@click.option("--retry-failed", is_flag=True, help="Solve failed runs again (their finished "
+              "bristles are kept); without it they stay failed.")
+@click.option("--quiet", is_flag=True, help="No progress bar.")
+@click.option("--example", is_flag=True, help="Print a commented sweep file and exit.")
+def sweep(sweep_file, out, scheduler, workers, retry_failed, quiet, example):
+    """Run the design sweep SWEEP_FILE: every run a run folder, one summary table.
+
+    All runs' bristle groups go into one queue on a Dask cluster (a local one by default).
+    Running the same command again skips finished runs and bristles; Ctrl-C stops cleanly
+    and keeps every finished run.
+    """
+    if example:
+        from exubrush.sweep.example import EXAMPLE
+
+        click.echo(EXAMPLE, nl=False)
+        return
+    if sweep_file is None:
+        _fail("give a sweep file (exubrush sweep --example prints one)")
+    from exubrush.execution.signals import signals_redirected
+    from exubrush.rundir import RunDirectoryError
+    from exubrush.sweep.plan import SweepError, read_sweep
+    from exubrush.sweep.runner import check_folder, default_folder, prepare_runs, run_sweep
+
+    try:
+        plan = read_sweep(sweep_file)
+        prepared = prepare_runs(plan)
+        folder = Path(out or default_folder(plan))
+        check_folder(folder, plan)
+    except SweepError as err:
+        _fail(str(err))
+    for warning in sorted({w for case in prepared for w in case.warnings}):
+        click.echo(f"exubrush: warning: {warning}", err=True)
+    execution = plan.execution
+    label = "--scheduler" if scheduler else f"{Path(sweep_file).name}: execution.scheduler"
+    groups = sum(len(case.groups) for case in prepared)
+    click.echo(f"sweep {plan.name}: {len(plan.runs)} runs, {groups} bristle groups, "
+               f"{sum(c.motion.end_time * len(c.bristles) for c in prepared):.4g} "
+               f"bristle-seconds to simulate; folder {folder}/", err=True)
+    try:
+        with (signals_redirected(signal.SIG_IGN),
+              _executor(scheduler or execution.scheduler, workers or execution.workers,
+                        execution.timeout, label) as executor):
+            click.echo(f"solving on {executor.describe()}", err=True)
+            outcome = run_sweep(plan, folder, executor, retry_failed, not quiet, prepared)
+    except (SweepError, RunDirectoryError) as err:
+        _fail(str(err))
+    except OSError as err:
+        _fail(f"sweep results not written: {os_message(err)}; finished runs are kept: fix "
+              "the cause and run the same command again to resume", RUN_FAILED)
+    counts = outcome.counts
+    click.echo(f"{counts['completed']} completed, {counts['failed']} failed, "
+               f"{counts['interrupted']} unfinished ({outcome.skipped} done before); "
+               f"{outcome.wall_time:.1f} s; summary in {folder}/ "
+               f"({', '.join(outcome.written[:3])}, ...)")
+    if outcome.interrupted:
+        _fail("interrupted: finished runs are kept; run the same command again to resume",
+              INTERRUPTED)
+    if counts["failed"]:
+        _fail(f"{counts['failed']} runs failed (status and message in their run.json); "
+              "'--retry-failed' solves them again", RUN_FAILED)
+
+
+@contextlib.contextmanager
+def signals_redirected_lazily():
+    """Ignore Ctrl-C and SIGTERM outside the solves (the executor handles them while it
+    runs), so that files being written are finished."""
+    from exubrush.execution.signals import signals_redirected
+
+    with signals_redirected(signal.SIG_IGN):
+        yield
 
 
 @main.command()

@@ -44,12 +44,16 @@ RESULT_FILES = ("forces.csv", "run.json", "forces.png", "shapes.npz", SOLUTION_F
 NAME_LENGTH = 64  # characters of a case name kept in a default directory name
 
 
+def safe_name(name: str) -> str:
+    """``name`` made safe as one directory name: only letters, digits, ``.``, ``_`` and
+    ``-`` (anything else becomes ``_``), no leading dot (so never ``..``), at most 64
+    characters. So a name can never lead outside the folder it is put in."""
+    return re.sub(r"[^A-Za-z0-9._-]", "_", name).lstrip(".")[:NAME_LENGTH] or "case"
+
+
 def default_directory(case) -> Path:
-    """``results/NAME-MODEL``, with the case name made safe as one directory name: only
-    letters, digits, ``.``, ``_`` and ``-`` (anything else becomes ``_``), no leading dot
-    (so never ``..``), at most 64 characters. So a name can never lead outside results/."""
-    safe = re.sub(r"[^A-Za-z0-9._-]", "_", case.name).lstrip(".")[:NAME_LENGTH] or "case"
-    return Path("results") / f"{safe}-{case.model.kind}"
+    """``results/NAME-MODEL``, with the case name made safe (:func:`safe_name`)."""
+    return Path("results") / f"{safe_name(case.name)}-{case.model.kind}"
 
 
 class RunDirectoryError(ValueError):

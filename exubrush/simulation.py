@@ -49,7 +49,8 @@ def simulate(case: Case | PreparedCase, progress: bool = True, workers: int | No
         Runs the solve tasks (default: exubrush.execution.local.local_executor).
     """
     prepared = case if isinstance(case, PreparedCase) else prepare(case)
-    tasks = [SolveTask(index, selection) for index, selection in enumerate(prepared.groups)]
+    tasks = [SolveTask(prepared, index, selection)
+             for index, selection in enumerate(prepared.groups)]
     solutions = [None] * len(tasks)
     for index, stored in (directory.stored_groups() if directory else {}).items():
         solutions[index] = stored
@@ -65,7 +66,7 @@ def simulate(case: Case | PreparedCase, progress: bool = True, workers: int | No
             directory.keep(task.index, solution)
 
     start = time.perf_counter()
-    interrupted = executor.run(prepared, todo, solved, bar.advance) if todo else False
+    interrupted = executor.run(todo, solved, bar.advance) if todo else False
     bar.close()
     facts = RunFacts(interrupted=interrupted, wall_time=time.perf_counter() - start,
                      workers=executor.workers, resumed=directory.resumed if directory else 0)

@@ -13,6 +13,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+INTERRUPTED = "interrupted"  # the message of a solve stopped on request (Ctrl-C, SIGTERM)
+
 
 @dataclass(frozen=True)
 class SolverStatistics:
@@ -70,6 +72,11 @@ class GroupSolution:
 
     ARRAYS = ("time", "reaction", "nodes", "coordinates")
 
+    @property
+    def interrupted(self) -> bool:
+        """Whether the solve was stopped on request (not by a fault) before its end."""
+        return not self.completed and self.message == INTERRUPTED
+
     def to_arrays(self) -> dict[str, np.ndarray]:
         """Plain arrays for ``np.savez`` (the scalars as one JSON text), read back by
         :meth:`from_arrays`."""
@@ -79,6 +86,13 @@ class GroupSolution:
         arrays = {name: getattr(self, name) for name in self.ARRAYS
                   if getattr(self, name) is not None}
         return {"scalars": np.array(json.dumps(scalars)), **arrays}
+
+    @classmethod
+    def not_solved(cls, message: str) -> GroupSolution:
+        """A group that produced nothing (e.g. every worker that ran it died), and why."""
+        return cls(time=np.zeros(0), reaction=np.zeros((0, 3)), nodes=np.zeros((0, 0, 0, 3)),
+                   coordinates=None, statistics=SolverStatistics(), completed=False,
+                   message=message, wall_time=0.0, contacts=0, handle_mass=0.0)
 
     @classmethod
     def from_arrays(cls, data) -> GroupSolution:

@@ -20,7 +20,7 @@ import numpy as np
 from exubrush.prepared import PreparedCase
 from exubrush.sanity import beyond_bound_message
 from exubrush.scene import build_scene
-from exubrush.solution import GroupSolution, SolverStatistics
+from exubrush.solution import INTERRUPTED, GroupSolution, SolverStatistics
 from exubrush.solution_files import read_coordinate_file
 from exubrush.solver import dynamic_settings, record_coordinates
 
@@ -67,7 +67,7 @@ def solve_group(prepared: PreparedCase, selection: tuple[int, ...],
             hook(mbs, t)
         if t - reported[0] >= PROGRESS_STEP:
             if monitor is not None and monitor.stop_requested():
-                status["reason"] = "interrupted"
+                status["reason"] = INTERRUPTED
                 return False
             if not np.all(np.isfinite(mbs.systemData.GetODE2Coordinates())):
                 status["reason"] = f"non-finite state at t = {t:.6g} s"

@@ -1,7 +1,7 @@
 """Running solve tasks: the executor interface and the local executors.
 
-An executor takes a prepared case and a list of :class:`SolveTask` (bristle groups), runs
-:func:`exubrush.solve.solve_group` for each wherever it likes, and hands every
+An executor takes a list of :class:`SolveTask` (bristle groups, of one run or of the many runs
+of a sweep), runs :func:`exubrush.solve.solve_group` for each wherever it likes, and hands every
 :class:`~exubrush.solve.GroupSolution` back to the caller, in the caller's process, as it
 finishes. It reports progress in simulated seconds and stops cleanly on Ctrl-C or SIGTERM:
 solves in progress return what they have, tasks not started are cancelled. The physics
@@ -19,19 +19,23 @@ from exubrush.prepared import PreparedCase
 from exubrush.solution import GroupSolution
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class SolveTask:
-    """One bristle group to solve: its index in the run and the bristles in it."""
+    """One bristle group to solve: the prepared run it belongs to, the group's index in that
+    run, the bristles in it, and the run's index among the runs solved together (0 for a
+    single run, the run's number in a sweep)."""
 
+    prepared: PreparedCase
     index: int
     selection: tuple[int, ...]
+    run: int = 0
 
 
 class Executor(ABC):
     """Runs solve tasks with progress and clean stops (see the package docstring)."""
 
     @abstractmethod
-    def run(self, prepared: PreparedCase, tasks: Sequence[SolveTask],
+    def run(self, tasks: Sequence[SolveTask],
             solved: Callable[[SolveTask, GroupSolution], None],
             advance: Callable[[float], None]) -> bool:
         """Solve ``tasks``; call ``solved(task, solution)`` here as each one finishes and

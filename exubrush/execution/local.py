@@ -30,14 +30,14 @@ class SerialExecutor(Executor):
 
     workers = 1
 
-    def run(self, prepared, tasks, solved, advance) -> bool:
+    def run(self, tasks, solved, advance) -> bool:
         stop = threading.Event()
         monitor = _Monitor(stop, advance)
         with signals_redirected(lambda *_: stop.set()):
             for task in tasks:
                 if stop.is_set():
                     break
-                solved(task, solve_group(prepared, task.selection, monitor))
+                solved(task, solve_group(task.prepared, task.selection, monitor))
         return stop.is_set()
 
 
@@ -51,14 +51,14 @@ class ProcessExecutor(Executor):
     def workers(self) -> int:
         return self.processes
 
-    def run(self, prepared, tasks, solved, advance) -> bool:
+    def run(self, tasks, solved, advance) -> bool:
         context = multiprocessing.get_context("spawn")
         updates, stop = context.Queue(), context.Event()
         with (signals_redirected(lambda *_: stop.set()),
               ProcessPoolExecutor(min(self.processes, len(tasks)), mp_context=context,
                                   initializer=_init_worker,
                                   initargs=(updates, os.getpid(), stop)) as pool):
-            futures = {pool.submit(_solve_in_worker, prepared, task.selection): task
+            futures = {pool.submit(_solve_in_worker, task.prepared, task.selection): task
                        for task in tasks}
             pending = set(futures)
             while pending:

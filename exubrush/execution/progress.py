@@ -13,11 +13,16 @@ class SimulatedTimeBar:
     never moved past its end (past it tqdm warns).
     """
 
-    def __init__(self, total: float, groups: int, description: str, enabled: bool = True):
+    def __init__(self, total: float, groups: int, description: str, enabled: bool = True,
+                 unit: str = "s simulated"):
         self.share = 1.0 / groups
         self.bar = tqdm(total=round(total, 2), disable=not enabled, desc=description,
-                        bar_format="{l_bar}{bar}| {n:.2f}/{total:.2f} s simulated "
-                                   "[{elapsed}<{remaining}]")
+                        bar_format="{l_bar}{bar}| {n:.2f}/{total:.2f} " + unit +
+                                   " [{elapsed}<{remaining}{postfix}]")
+
+    def note(self, text: str) -> None:
+        """Show ``text`` after the times (e.g. how many runs of a sweep are done)."""
+        self.bar.set_postfix_str(text)
 
     def advance(self, seconds: float) -> None:
         """One group solved ``seconds`` more."""

@@ -9,6 +9,7 @@ generic functions here walk such dataclasses, so a case file, ``--set KEY=VALUE`
 from __future__ import annotations
 
 import dataclasses
+import difflib
 import math
 import tomllib
 import typing
@@ -281,17 +282,29 @@ def parse_override(assignment: str) -> tuple[str, Any]:
     return key, value
 
 
-def apply_override(data: dict, cls: type, key: str, value: Any) -> None:
-    """Set dotted ``key`` in the nested mapping ``data`` after checking it exists in ``cls``."""
+def describe_key(cls: type, key: str, label: str | None = None) -> tuple[Any, dict]:
+    """The type annotation and field metadata (unit, range, choices) of the dotted scalar
+    parameter ``key`` of ``cls``; a ParameterError starting with ``label`` (default
+    ``--set KEY``) if there is no such parameter, with the nearest names."""
+    label = label or f"--set {key}"
     known = dotted_keys(cls)
     *parents, leaf = key.split(".")
     owner = _owner_class(cls, parents)
     if owner is not None and leaf in getattr(owner, "RENAMED", {}):
-        raise ParameterError(f"--set {key}: {owner.RENAMED[leaf]}")
+        raise ParameterError(f"{label}: {owner.RENAMED[leaf]}")
     if key not in known:
-        close = [k for k in known if k.split(".")[-1] == key.split(".")[-1]]
+        close = ([k for k in known if k.split(".")[-1] == key.split(".")[-1]]
+                 or difflib.get_close_matches(key, known, n=1))
         hint = f"; did you mean {' or '.join(close)}?" if close else "; see 'exubrush case'"
-        raise ParameterError(f"--set {key}: unknown parameter{hint}")
+        raise ParameterError(f"{label}: unknown parameter{hint}")
+    field = next(f for f in dataclasses.fields(owner) if f.name == leaf)
+    return _field_types(owner)[leaf], field.metadata
+
+
+def apply_override(data: dict, cls: type, key: str, value: Any) -> None:
+    """Set dotted ``key`` in the nested mapping ``data`` after checking it exists in ``cls``."""
+    describe_key(cls, key)
+    *parents, leaf = key.split(".")
     table = data
     for part in parents:
         table = table.setdefault(part, {})

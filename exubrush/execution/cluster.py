@@ -1,0 +1,223 @@
+"""Solve tasks on a Dask cluster: a local one started here, or one at a scheduler address.
+
+Each task is the same bristle-group solve the process pool runs
+(:func:`exubrush.solve.solve_group`); its :class:`~exubrush.solution.GroupSolution` comes back
+to this process, which writes every file, so workers need exubrush installed and nothing
+else (no shared disk). A prepared case is sent to the cluster once and shared by all its
+tasks. Tasks of every run of a sweep go into one queue, so the scheduler balances them
+over all workers.
+
+Faults and stops:
+
+- a worker that dies mid-task is replaced (its nanny restarts it) and the scheduler runs the
+  task again elsewhere; a task that kills ``distributed.scheduler.allowed-failures`` + 1
+  workers comes back as a failed group whose message says so;
+- Ctrl-C or SIGTERM here sets a cluster-wide event: running solves see it at their next
+  check (at most :data:`CHECK_INTERVAL` s later) and return what they have, tasks that start
+  after it return at once with nothing. The workers of a local cluster ignore SIGINT and
+  SIGTERM themselves (they are started with both ignored), so a Ctrl-C in the terminal
+  stops the run through this process and not by killing the workers.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import logging
+import os
+import signal
+import threading
+import time
+import uuid
+from collections.abc import Iterator
+
+from exubrush.execution import Executor
+from exubrush.execution.signals import signals_redirected
+from exubrush.solution import GroupSolution
+
+POLL = 0.2  # s between two looks at the futures and the progress queue
+CHECK_INTERVAL = 0.5  # s of wall time between a worker's looks at the stop event
+REPORT_INTERVAL = 1.0  # s of wall time between a worker's progress reports
+CONNECT_TIMEOUT = 10.0  # s to reach a scheduler before giving up
+SCHEMES = ("tcp", "tls", "inproc", "ws", "wss", "ucx")  # Dask's communication protocols
+
+
+class ClusterError(RuntimeError):
+    """The cluster cannot be reached or used."""
+
+
+class DaskExecutor(Executor):
+    """Runs solve tasks on the cluster of a ``distributed.Client``."""
+
+    def __init__(self, client, local: bool = False):
+        self.client, self.local = client, local
+
+    @property
+    def workers(self) -> int:
+        return max(1, sum(self.client.nthreads().values()))
+
+    def describe(self) -> str:
+        """Where the tasks run, for the user: the cluster and its dashboard."""
+        where = (f"a local Dask cluster of {self.workers} worker processes" if self.local
+                 else f"the Dask cluster at {self.client.scheduler.address} "
+                      f"({self.workers} worker threads)")
+        link = self.client.dashboard_link
+        return f"{where}; dashboard {link}" if link else where
+
+    def run(self, tasks, solved, advance) -> bool:
+        from distributed import Event, Queue, as_completed
+
+        name = f"exubrush-{uuid.uuid4().hex[:12]}"
+        stop_event = Event(f"{name}-stop", client=self.client)
+        reports = Queue(f"{name}-progress", client=self.client)
+        stop = threading.Event()
+        shared = {}
+        for task in tasks:  # each prepared case goes to the cluster once
+            if id(task.prepared) not in shared:
+                # as a task, not scattered data: if the worker holding it dies, the scheduler
+                # makes it again from the task (scattered data would be lost with the worker)
+                shared[id(task.prepared)] = self.client.submit(
+                    _given, task.prepared, key=f"{name}-prepared{len(shared)}", pure=False)
+        futures = {
+            self.client.submit(_solve_on_worker, shared[id(task.prepared)], task.selection,
+                               name, key=f"{name}-run{task.run}-group{task.index}",
+                               pure=False): task
+            for task in tasks
+        }
+        completed = as_completed(futures, loop=self.client.loop)
+        with signals_redirected(lambda *_: stop.set()):
+            while not completed.is_empty():
+                batch = completed.next_batch(block=False)
+                for future in batch:
+                    solution = _outcome(future, futures[future])
+                    if solution is not None:
+                        solved(futures[future], solution)
+                _pass_on(reports, advance)
+                if stop.is_set() and not stop_event.is_set():
+                    # running solves return what they have, the others return None at once
+                    stop_event.set()
+                if not batch:
+                    time.sleep(POLL)
+        _pass_on(reports, advance)
+        for future in futures:
+            future.release()
+        return stop.is_set()
+
+
+def _outcome(future, task) -> GroupSolution | None:
+    """The solution a finished future holds; a failed group if workers kept dying under
+    it; None if it never started (stopped first)."""
+    from distributed import KilledWorker
+
+    try:
+        return future.result()
+    except KilledWorker as err:
+        return GroupSolution.not_solved(
+            f"every worker that ran group {task.index} died ({err}); a worker may be out of "
+            "memory: give the workers more memory or run fewer per machine")
+
+
+def _pass_on(reports, advance) -> None:
+    """Hand the workers' progress reports (simulated seconds) to ``advance``."""
+    with contextlib.suppress(TimeoutError):
+        for seconds in reports.get(batch=True, timeout=0) or ():
+            advance(seconds)
+
+
+class _WorkerMonitor:
+    """A solve's monitor on a worker: progress and stop checks go through the cluster, at
+    most every :data:`REPORT_INTERVAL` and :data:`CHECK_INTERVAL` seconds of wall time."""
+
+    def __init__(self, name: str):
+        from distributed import Event, Queue, get_client
+
+        client = get_client()  # the worker's own client
+        self.stop_event = Event(f"{name}-stop", client=client)
+        self.reports = Queue(f"{name}-progress", client=client)
+        self.unreported, self.last_report, self.last_check = 0.0, time.monotonic(), 0.0
+        self.stopping = False
+
+    def advance(self, simulated: float) -> None:
+        self.unreported += simulated
+        if time.monotonic() - self.last_report >= REPORT_INTERVAL:
+            self.flush()
+
+    def flush(self) -> None:
+        if self.unreported > 0.0:
+            self.reports.put(self.unreported)
+            self.unreported, self.last_report = 0.0, time.monotonic()
+
+    def stop_requested(self) -> bool:
+        if not self.stopping and time.monotonic() - self.last_check >= CHECK_INTERVAL:
+            self.stopping, self.last_check = self.stop_event.is_set(), time.monotonic()
+        return self.stopping
+
+
+def _given(value):
+    return value
+
+
+def _solve_on_worker(prepared, selection, name: str) -> GroupSolution | None:
+    """Solve one group, or return None at once if the run was stopped before it began."""
+    from exubrush.solve import solve_group
+
+    monitor = _WorkerMonitor(name)
+    if monitor.stop_requested():
+        return None
+    solution = solve_group(prepared, selection, monitor)
+    monitor.flush()
+    return solution
+
+
+@contextlib.contextmanager
+def dask_executor(scheduler: str = "local", workers: int | None = None,
+                  timeout: float = CONNECT_TIMEOUT, label: str = "--scheduler"
+                  ) -> Iterator[DaskExecutor]:
+    """A Dask executor on a local cluster started here (``scheduler`` "local", ``workers``
+    processes, default: every core) or on the cluster whose scheduler is at ``scheduler``
+    (``tcp://HOST:PORT``); ClusterError, naming ``label``, if it cannot be reached."""
+    if scheduler == "local":
+        with local_cluster(workers or os.cpu_count() or 1) as client:
+            yield DaskExecutor(client, local=True)
+        return
+    client = connect(scheduler, timeout, label)
+    try:
+        yield DaskExecutor(client)
+    finally:
+        client.close()
+
+
+def connect(address: str, timeout: float = CONNECT_TIMEOUT, label: str = "--scheduler"):
+    """A client of the scheduler at ``address`` (``tcp://HOST:PORT``), or ClusterError with
+    what to check."""
+    from distributed import Client
+
+    scheme, _, location = address.partition("://")
+    if scheme not in SCHEMES or not location:
+        raise ClusterError(f"{label} {address!r}: not a scheduler address; write it as "
+                           "tcp://HOST:PORT (what 'dask scheduler' prints) or 'local'")
+    try:
+        return Client(address, timeout=timeout, set_as_default=False)
+    except (OSError, TimeoutError, ValueError) as err:
+        raise ClusterError(f"{label} {address}: no scheduler answered within {timeout:g} s "
+                           f"({' '.join(str(err).split())[:120]}); check the address and that "
+                           "'dask scheduler' runs there") from None
+
+
+@contextlib.contextmanager
+def local_cluster(workers: int) -> Iterator:
+    """A client of a Dask cluster on this machine: ``workers`` processes of one thread each,
+    started with SIGINT and SIGTERM ignored (this process handles both), closed on exit."""
+    from distributed import Client, LocalCluster
+
+    previous = {s: signal.signal(s, signal.SIG_IGN) for s in (signal.SIGINT, signal.SIGTERM)}
+    try:
+        cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                               dashboard_address=":0", silence_logs=logging.ERROR)
+    finally:
+        for number, handler in previous.items():
+            signal.signal(number, handler)
+    try:
+        with Client(cluster, set_as_default=False) as client:
+            yield client
+    finally:
+        cluster.close()
