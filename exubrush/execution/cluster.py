@@ -64,7 +64,7 @@ class DaskExecutor(Executor):
         return f"{where}; dashboard {link}" if link else where
 
     def run(self, tasks, solved, advance) -> bool:
-        from distributed import Event, Queue, as_completed
+        from distributed import Event, Queue, wait
 
         name = f"exubrush-{uuid.uuid4().hex[:12]}"
         stop_event = Event(f"{name}-stop", client=self.client)
@@ -79,25 +79,28 @@ class DaskExecutor(Executor):
                     _given, task.prepared, key=f"{name}-prepared{len(shared)}", pure=False)
         futures = {
             self.client.submit(_solve_on_worker, shared[id(task.prepared)], task.selection,
-                               name, key=f"{name}-run{task.run}-group{task.index}",
-                               pure=False): task
-            for task in tasks
+                               name, number, key=f"{name}-run{task.run}-group{task.index}",
+                               pure=False): (number, task)
+            for number, task in enumerate(tasks)
         }
-        completed = as_completed(futures, loop=self.client.loop)
-        with signals_redirected(lambda *_: stop.set()):
-            while not completed.is_empty():
-                batch = completed.next_batch(block=False)
+        progress = _Progress(tasks, advance)
+        pending = set(futures)
+        with signals_redirected(lambda *_: stop.set()), self.client.as_current():
+            while pending:
+                try:  # back as soon as one finishes
+                    batch, pending = wait(pending, timeout=POLL, return_when="FIRST_COMPLETED")
+                except TimeoutError:
+                    batch = ()
+                progress.take(reports)
                 for future in batch:
-                    solution = _outcome(future, futures[future])
+                    number, task = futures[future]
+                    solution = _outcome(future, task)
+                    progress.finished(number)
                     if solution is not None:
-                        solved(futures[future], solution)
-                _pass_on(reports, advance)
+                        solved(task, solution)
                 if stop.is_set() and not stop_event.is_set():
                     # running solves return what they have, the others return None at once
                     stop_event.set()
-                if not batch:
-                    time.sleep(POLL)
-        _pass_on(reports, advance)
         for future in futures:
             future.release()
         return stop.is_set()
@@ -116,16 +119,40 @@ def _outcome(future, task) -> GroupSolution | None:
             "memory: give the workers more memory or run fewer per machine")
 
 
-def _pass_on(reports, advance) -> None:
-    """Hand the workers' progress reports (simulated seconds) to ``advance``."""
-    with contextlib.suppress(TimeoutError):
-        for seconds in reports.get(batch=True, timeout=0) or ():
-            advance(seconds)
+class _Progress:
+    """Simulated seconds per task: the workers' reports while a task runs, the rest of the
+    task's end time when it finishes (a task's solve always accounts for its whole end
+    time), late reports of finished tasks ignored, and no task counted past its end time
+    (a task run again after its worker died reports twice)."""
+
+    def __init__(self, tasks, advance):
+        self.end = [task.prepared.motion.end_time for task in tasks]
+        self.reported = [0.0] * len(tasks)
+        self.done = [False] * len(tasks)
+        self.advance = advance
+
+    def _add(self, number: int, seconds: float) -> None:
+        step = min(seconds, self.end[number] - self.reported[number])
+        if step > 0.0 and not self.done[number]:
+            self.reported[number] += step
+            self.advance(step)
+
+    def take(self, reports) -> None:
+        """Pass on the reports (task number, seconds) in the queue."""
+        with contextlib.suppress(TimeoutError):
+            for number, seconds in reports.get(batch=True, timeout=0) or ():
+                self._add(number, seconds)
+
+    def finished(self, number: int) -> None:
+        self._add(number, self.end[number])
+        self.done[number] = True
 
 
 class _WorkerMonitor:
     """A solve's monitor on a worker: progress and stop checks go through the cluster, at
-    most every :data:`REPORT_INTERVAL` and :data:`CHECK_INTERVAL` seconds of wall time."""
+    most every :data:`REPORT_INTERVAL` and :data:`CHECK_INTERVAL` seconds of wall time,
+    shared by the tasks of one run of the executor on this worker (so short tasks do not
+    pay a round trip to the scheduler each)."""
 
     def __init__(self, name: str):
         from distributed import Event, Queue, get_client
@@ -134,17 +161,17 @@ class _WorkerMonitor:
         self.stop_event = Event(f"{name}-stop", client=client)
         self.reports = Queue(f"{name}-progress", client=client)
         self.unreported, self.last_report, self.last_check = 0.0, time.monotonic(), 0.0
-        self.stopping = False
+        self.stopping, self.task = False, 0
 
     def advance(self, simulated: float) -> None:
         self.unreported += simulated
         if time.monotonic() - self.last_report >= REPORT_INTERVAL:
-            self.flush()
-
-    def flush(self) -> None:
-        if self.unreported > 0.0:
-            self.reports.put(self.unreported)
+            self.reports.put((self.task, self.unreported))
             self.unreported, self.last_report = 0.0, time.monotonic()
+
+    def start(self, task: int) -> None:
+        """A new task begins: what the last one did not report, its end reports."""
+        self.task, self.unreported = task, 0.0
 
     def stop_requested(self) -> bool:
         if not self.stopping and time.monotonic() - self.last_check >= CHECK_INTERVAL:
@@ -152,20 +179,25 @@ class _WorkerMonitor:
         return self.stopping
 
 
+_MONITOR: dict = {}  # this worker's monitor: {run name: _WorkerMonitor}, the latest run only
+
+
 def _given(value):
     return value
 
 
-def _solve_on_worker(prepared, selection, name: str) -> GroupSolution | None:
+def _solve_on_worker(prepared, selection, name: str, task: int) -> GroupSolution | None:
     """Solve one group, or return None at once if the run was stopped before it began."""
     from exubrush.solve import solve_group
 
-    monitor = _WorkerMonitor(name)
+    if name not in _MONITOR:
+        _MONITOR.clear()
+        _MONITOR[name] = _WorkerMonitor(name)
+    monitor = _MONITOR[name]
+    monitor.start(task)
     if monitor.stop_requested():
         return None
-    solution = solve_group(prepared, selection, monitor)
-    monitor.flush()
-    return solution
+    return solve_group(prepared, selection, monitor)
 
 
 @contextlib.contextmanager
