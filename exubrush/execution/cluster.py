@@ -38,6 +38,16 @@ POLL = 0.2  # s between two looks at the futures and the progress queue
 CHECK_INTERVAL = 0.5  # s of wall time between a worker's looks at the stop event
 REPORT_INTERVAL = 1.0  # s of wall time between a worker's progress reports
 CONNECT_TIMEOUT = 10.0  # s to reach a scheduler before giving up
+# A worker solves in a thread beside its event loop; what wakes that loop takes the GIL from
+# the solve, which calls Python every step. These make a local worker's solves 7-10 % faster
+# (validation/benchmarks/README.md, "Sweeps on Dask"); workers of another cluster take them
+# from their environment (docs/sweeps.md).
+QUIET_WORKERS = {
+    "distributed.admin.tick.interval": "1s",  # the event loop's watchdog, 20 ms by default
+    "distributed.admin.tick.limit": "30s",  # ... and its warning of a busy loop
+    "distributed.worker.profile.enabled": False,  # the statistical profiler, every 10 ms
+    "distributed.admin.system-monitor.interval": "5s",  # CPU and memory sampling, 0.5 s
+}
 SCHEMES = ("tcp", "tls", "inproc", "ws", "wss", "ucx")  # Dask's communication protocols
 
 
@@ -239,12 +249,14 @@ def connect(address: str, timeout: float = CONNECT_TIMEOUT, label: str = "--sche
 def local_cluster(workers: int) -> Iterator:
     """A client of a Dask cluster on this machine: ``workers`` processes of one thread each,
     started with SIGINT and SIGTERM ignored (this process handles both), closed on exit."""
+    import dask
     from distributed import Client, LocalCluster
 
     previous = {s: signal.signal(s, signal.SIG_IGN) for s in (signal.SIGINT, signal.SIGTERM)}
     try:
-        cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                               dashboard_address=":0", silence_logs=logging.ERROR)
+        with dask.config.set(QUIET_WORKERS):
+            cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                                   dashboard_address=":0", silence_logs=logging.ERROR)
     finally:
         for number, handler in previous.items():
             signal.signal(number, handler)

@@ -5,6 +5,8 @@ The sweep: 3 interaction distances of a 1 x 2 head on a short, fast slide (1 s p
 periods: whole strokes in both directions, so every metric is defined).
 """
 
+import dataclasses
+import json
 import os
 import signal
 import subprocess
@@ -16,6 +18,7 @@ import pytest
 
 from exubrush.execution import Executor
 from exubrush.execution.cluster import dask_executor
+from exubrush.execution.local import SerialExecutor
 from exubrush.sweep.plan import read_sweep
 from exubrush.sweep.runner import run_sweep
 
@@ -172,3 +175,38 @@ def test_run_on_a_dask_cluster_equals_the_process_pool(tmp_path, separate_runs):
     assert (out / "forces.csv").read_bytes() == (separate_runs / RUNS[1] / "forces.csv"
                                                  ).read_bytes()
 
+
+
+class _FailingRun(SerialExecutor):
+    """Solves in this process, but hands run ``failing``'s groups back as failed."""
+
+    def __init__(self, failing):
+        self.failing = failing
+
+    def run(self, tasks, solved, advance):
+        def maybe_failed(task, solution):
+            if task.run == self.failing:
+                solution = dataclasses.replace(solution, completed=False,
+                                               message="failed on purpose")
+            solved(task, solution)
+
+        return super().run(tasks, maybe_failed, advance)
+
+
+def test_a_failed_run_is_kept_and_solved_again_only_when_asked(tmp_path, sweep_file,
+                                                               separate_runs):
+    plan = read_sweep(sweep_file)
+    out = tmp_path / "sweep"
+    first = run_sweep(plan, out, _FailingRun(failing=1), progress=False)
+    assert first.counts == {"completed": 2, "failed": 1, "interrupted": 0}
+    record = json.loads((out / RUNS[1] / "run.json").read_text())
+    assert record["status"] == "failed" and "failed on purpose" in record["message"]
+    kept = run_sweep(plan, out, _FailingRun(failing=None), progress=False)
+    assert kept.skipped == 3 and kept.counts["failed"] == 1
+    retried = run_sweep(plan, out, _FailingRun(failing=None), retry_failed=True,
+                        progress=False)
+    assert retried.skipped == 2 and retried.counts == {"completed": 3, "failed": 0,
+                                                       "interrupted": 0}
+    _assert_same_forces(out, separate_runs)
+    summary = (out / "summary.csv").read_text()
+    assert summary.count(",completed,") == 3
