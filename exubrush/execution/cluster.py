@@ -3,9 +3,11 @@
 Each task is the same bristle-group solve the process pool runs
 (:func:`exubrush.solve.solve_group`); its :class:`~exubrush.solution.GroupSolution` comes back
 to this process, which writes every file, so workers need exubrush installed and nothing
-else (no shared disk). A prepared case is sent to the cluster once and shared by all its
-tasks. Tasks of every run of a sweep go into one queue, so the scheduler balances them
-over all workers.
+else (no shared disk). Tasks of every run of a sweep go into one queue here; the scheduler
+holds only :data:`IN_FLIGHT` tasks per worker thread at a time, each with its prepared case
+(tens of kB), so whichever worker is free takes the next one. (A prepared case shared as
+one Dask dependency made the scheduler put every task of a run on the worker holding it:
+one core of two did the work.)
 
 Faults and stops:
 
@@ -14,13 +16,15 @@ Faults and stops:
   workers comes back as a failed group whose message says so;
 - Ctrl-C or SIGTERM here sets a cluster-wide event: running solves see it at their next
   check (at most :data:`CHECK_INTERVAL` s later) and return what they have, tasks that start
-  after it return at once with nothing. The workers of a local cluster ignore SIGINT and
-  SIGTERM themselves (they are started with both ignored), so a Ctrl-C in the terminal
-  stops the run through this process and not by killing the workers.
+  after it return at once with nothing, and no further task is handed out. The workers of
+  a local cluster ignore SIGINT and SIGTERM themselves (they are started with both
+  ignored), so a Ctrl-C in the terminal stops the run through this process and not by
+  killing the workers.
 """
 
 from __future__ import annotations
 
+import collections
 import contextlib
 import logging
 import os
@@ -38,6 +42,7 @@ POLL = 0.2  # s between two looks at the futures and the progress queue
 CHECK_INTERVAL = 0.5  # s of wall time between a worker's looks at the stop event
 REPORT_INTERVAL = 1.0  # s of wall time between a worker's progress reports
 CONNECT_TIMEOUT = 10.0  # s to reach a scheduler before giving up
+IN_FLIGHT = 2  # tasks per worker thread handed to the scheduler at a time (one runs, one waits)
 # A worker solves in a thread beside its event loop; what wakes that loop takes the GIL from
 # the solve, which calls Python every step. These make a local worker's solves 7-10 % faster
 # (validation/benchmarks/README.md, "Sweeps on Dask"); workers of another cluster take them
@@ -80,39 +85,38 @@ class DaskExecutor(Executor):
         stop_event = Event(f"{name}-stop", client=self.client)
         reports = Queue(f"{name}-progress", client=self.client)
         stop = threading.Event()
-        shared = {}
-        for task in tasks:  # each prepared case goes to the cluster once
-            if id(task.prepared) not in shared:
-                # as a task, not scattered data: if the worker holding it dies, the scheduler
-                # makes it again from the task (scattered data would be lost with the worker)
-                shared[id(task.prepared)] = self.client.submit(
-                    _given, task.prepared, key=f"{name}-prepared{len(shared)}", pure=False)
-        futures = {
-            self.client.submit(_solve_on_worker, shared[id(task.prepared)], task.selection,
-                               name, number, key=f"{name}-run{task.run}-group{task.index}",
-                               pure=False): (number, task)
-            for number, task in enumerate(tasks)
-        }
+        waiting = collections.deque(enumerate(tasks))
+        running: dict = {}  # future -> (task number, task)
+
+        def submit_more() -> None:
+            """Keep IN_FLIGHT tasks per worker thread at the scheduler, no more."""
+            while waiting and len(running) < IN_FLIGHT * self.workers and not stop.is_set():
+                number, task = waiting.popleft()
+                future = self.client.submit(_solve_on_worker, task.prepared, task.selection,
+                                            name, number, key=f"exubrush-group-{name}-{number}",
+                                            pure=False)
+                running[future] = (number, task)
+
         progress = _Progress(tasks, advance)
-        pending = set(futures)
         with signals_redirected(lambda *_: stop.set()), self.client.as_current():
-            while pending:
+            submit_more()
+            while running:
                 try:  # back as soon as one finishes
-                    batch, pending = wait(pending, timeout=POLL, return_when="FIRST_COMPLETED")
+                    batch = wait(list(running), timeout=POLL, return_when="FIRST_COMPLETED").done
                 except TimeoutError:
                     batch = ()
                 progress.take(reports)
                 for future in batch:
-                    number, task = futures[future]
+                    number, task = running.pop(future)
                     solution = _outcome(future, task)
+                    future.release()
                     progress.finished(number)
                     if solution is not None:
                         solved(task, solution)
                 if stop.is_set() and not stop_event.is_set():
                     # running solves return what they have, the others return None at once
                     stop_event.set()
-        for future in futures:
-            future.release()
+                submit_more()
         return stop.is_set()
 
 
@@ -190,10 +194,6 @@ class _WorkerMonitor:
 
 
 _MONITOR: dict = {}  # this worker's monitor: {run name: _WorkerMonitor}, the latest run only
-
-
-def _given(value):
-    return value
 
 
 def _solve_on_worker(prepared, selection, name: str, task: int) -> GroupSolution | None:
