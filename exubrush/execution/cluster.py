@@ -42,7 +42,7 @@ POLL = 0.2  # s between two looks at the futures and the progress queue
 CHECK_INTERVAL = 0.5  # s of wall time between a worker's looks at the stop event
 REPORT_INTERVAL = 1.0  # s of wall time between a worker's progress reports
 CONNECT_TIMEOUT = 10.0  # s to reach a scheduler before giving up
-IN_FLIGHT = 2  # tasks per worker thread handed to the scheduler at a time (one runs, one waits)
+IN_FLIGHT = 3  # tasks per worker thread handed to the scheduler at a time (one runs, two wait)
 # A worker solves in a thread beside its event loop; what wakes that loop takes the GIL from
 # the solve, which calls Python every step. These make a local worker's solves 7-10 % faster
 # (validation/benchmarks/README.md, "Sweeps on Dask"); workers of another cluster take them
@@ -90,7 +90,8 @@ class DaskExecutor(Executor):
 
         def submit_more() -> None:
             """Keep IN_FLIGHT tasks per worker thread at the scheduler, no more."""
-            while waiting and len(running) < IN_FLIGHT * self.workers and not stop.is_set():
+            window = IN_FLIGHT * self.workers  # asks the scheduler: workers come and go
+            while waiting and len(running) < window and not stop.is_set():
                 number, task = waiting.popleft()
                 future = self.client.submit(_solve_on_worker, task.prepared, task.selection,
                                             name, number, key=f"exubrush-group-{name}-{number}",
@@ -98,6 +99,7 @@ class DaskExecutor(Executor):
                 running[future] = (number, task)
 
         progress = _Progress(tasks, advance)
+        last_look = time.monotonic()
         with signals_redirected(lambda *_: stop.set()), self.client.as_current():
             submit_more()
             while running:
@@ -105,7 +107,9 @@ class DaskExecutor(Executor):
                     batch = wait(list(running), timeout=POLL, return_when="FIRST_COMPLETED").done
                 except TimeoutError:
                     batch = ()
-                progress.take(reports)
+                if time.monotonic() - last_look >= POLL:  # the queue is at the scheduler
+                    progress.take(reports)
+                    last_look = time.monotonic()
                 for future in batch:
                     number, task = running.pop(future)
                     solution = _outcome(future, task)

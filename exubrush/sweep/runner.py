@@ -55,7 +55,6 @@ class RunState:
     store: RunDirectory | None = None
     solutions: list = field(default_factory=list)
     returned: int = 0
-    compute_time: float = 0.0  # s, its groups' solve wall times summed
     metrics: dict = field(default_factory=dict)
 
 
@@ -188,7 +187,6 @@ def run_sweep(plan: SweepPlan, folder: str | Path, executor: Executor,
         state = states[task.run]
         state.solutions[task.index] = solution
         state.returned += 1
-        state.compute_time += solution.wall_time
         if solution.completed:
             state.store.keep(task.index, solution)
         if state.returned == len(state.solutions):
@@ -214,7 +212,9 @@ def _runs_note(states: list[RunState]) -> str:
 
 def _finish(state: RunState, executor: Executor) -> None:
     """Assemble and write a run whose every group came back."""
-    facts = RunFacts(interrupted=False, wall_time=state.compute_time,
+    # runs of a sweep overlap: a run's own wall time is its solves' time, summed
+    compute = sum(s.wall_time for s in state.solutions if s is not None)
+    facts = RunFacts(interrupted=False, wall_time=compute,
                      workers=executor.workers, resumed=state.store.resumed)
     results = assemble_results(state.prepared, state.solutions, facts)
     results.save(state.folder)
@@ -254,7 +254,7 @@ def write_summary(plan: SweepPlan, states: list[RunState], folder: Path) -> list
                 results = read_results(state.folder)
                 state.metrics = run_metrics(results)
                 simulated = float(results.metadata.get("simulated_time_s", math.nan))
-                compute = float(results.metadata.get("wall_time_s", math.nan))
+                compute = float(results.metadata.get("solver_wall_time_s_sum", math.nan))
             except ResultsError:
                 pass  # a failed run that stored no time series: its row stays empty
         rows.append([state.run.name, state.status, *(v[number] for v in values.values()),

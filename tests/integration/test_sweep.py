@@ -83,6 +83,11 @@ def test_sweep_equals_separate_runs_bit_for_bit(tmp_path, sweep_file, separate_r
         [name, "completed", value] for name, value in zip(RUNS, ("4", "4.2", "4.4"),
                                                           strict=True)]
     assert (out / "summary-motion.interaction_distance.png").stat().st_size > 0
+    pandas = pytest.importorskip("pandas")  # summary.parquet is written where it is installed
+    pytest.importorskip("pyarrow")
+    table = pandas.read_parquet(out / "summary.parquet")
+    assert list(table.columns) == rows[0].split(",")
+    assert list(table["run"]) == list(RUNS)
     assert (out / "sensitivity.csv").is_file()
     # every metric of every run is defined: two whole strokes, both directions
     assert all("" not in row.split(",") for row in rows[1:])
