@@ -29,6 +29,7 @@ import contextlib
 import logging
 import os
 import signal
+import tempfile
 import threading
 import time
 import uuid
@@ -252,15 +253,21 @@ def connect(address: str, timeout: float = CONNECT_TIMEOUT, label: str = "--sche
 @contextlib.contextmanager
 def local_cluster(workers: int) -> Iterator:
     """A client of a Dask cluster on this machine: ``workers`` processes of one thread each,
-    started with SIGINT and SIGTERM ignored (this process handles both), closed on exit."""
+    started with SIGINT and SIGTERM ignored (this process handles both), closed on exit
+    together with the temporary directory its workers keep their files in."""
     import dask
     from distributed import Client, LocalCluster
 
+    scratch = tempfile.TemporaryDirectory(prefix="exubrush-dask-")  # workers' files, removed
     previous = {s: signal.signal(s, signal.SIG_IGN) for s in (signal.SIGINT, signal.SIGTERM)}
     try:
         with dask.config.set(QUIET_WORKERS):
             cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                                   dashboard_address=":0", silence_logs=logging.ERROR)
+                                   dashboard_address=":0", silence_logs=logging.ERROR,
+                                   local_directory=scratch.name)
+    except BaseException:
+        scratch.cleanup()
+        raise
     finally:
         for number, handler in previous.items():
             signal.signal(number, handler)
@@ -269,3 +276,4 @@ def local_cluster(workers: int) -> Iterator:
             yield client
     finally:
         cluster.close()
+        scratch.cleanup()

@@ -15,19 +15,21 @@ MOST_SERIES = 8  # more combinations of the other parameters than this: points, 
 
 
 def plot_summary(name: str, swept: dict, statuses, metrics, folder: Path) -> list[str]:
-    """One ``summary-PARAMETER.png`` per swept parameter: each metric of each finished run
-    against that parameter's value. Runs that share the values of every other swept
-    parameter are joined by a line and labelled by them (for up to 8 such series, as in a
-    grid); failed runs are red crosses; text values are categories. ``swept`` maps each
-    parameter's column label ("key [unit]") to its values over the runs. Returns the file
-    names written."""
+    """One ``summary-PARAMETER.png`` per swept parameter with more than one value: each
+    metric of each finished run against that parameter's value. Runs that share the values
+    of every other varied parameter are joined by a line and labelled by them (for up to 8
+    such series, as in a grid); failed runs are red crosses; text values are categories.
+    ``swept`` maps each parameter's column label ("key [unit]") to its values over the
+    runs. Returns the file names written."""
     written = []
-    for label, values in swept.items():
+    varied = {label: values for label, values in swept.items()
+              if len({str(v) for v in values}) > 1}  # a parameter with one value: no axis
+    for label, values in varied.items():
         categorical = any(isinstance(v, str) for v in values)
         categories = sorted({str(v) for v in values}) if categorical else []
         x = [categories.index(str(v)) if categorical else v for v in values]
         others = [(other.split(" [")[0].split(".")[-1], vals)
-                  for other, vals in swept.items() if other != label]
+                  for other, vals in varied.items() if other != label]
         series: dict[str, list[int]] = {}
         for run in range(len(values)):
             key = ", ".join(f"{short}={_shown(vals[run])}" for short, vals in others)

@@ -134,6 +134,7 @@ def test_a_worker_killed_mid_task_loses_and_duplicates_nothing(tmp_path, sweep_f
     killed = []
     with dask_executor("local", 2) as executor:
         pids = executor.client.run(os.getpid)
+        scratch = executor.client.run(lambda dask_worker: dask_worker.local_directory)
         killer = threading.Thread(target=_kill_a_worker_mid_task,
                                   args=(executor.client, pids, killed))
         killer.start()
@@ -142,6 +143,7 @@ def test_a_worker_killed_mid_task_loses_and_duplicates_nothing(tmp_path, sweep_f
         killer.join()
         survivors = list(executor.client.run(os.getpid).values())
     assert killed and killed[0] not in survivors  # its nanny started a new worker
+    assert not any(os.path.exists(path) for path in scratch.values())  # workers' files gone
     assert outcome.counts == {"completed": 3, "failed": 0, "interrupted": 0}
     assert sorted(counting.handed) == [(run, group) for run in range(3) for group in range(2)]
     _assert_same_forces(tmp_path / "sweep", separate_runs)
