@@ -56,35 +56,46 @@ class Scene:
 
 
 def _add_drive(scene: Scene, handle_node) -> None:
+    """Prescribe the handle's six coordinates: the slide along the slide axis plus the
+    descent along z, nothing on the other axes.
+
+    The moving axes' offsets are set in a step hook, not by an offset user function: Exudyn
+    calls the pre-step function before every step attempt (retries included) with t at the
+    step's end, where the implicit solver imposes the constraint, so the offsets are the
+    same as the user function's, while the user function was called several times per
+    Newton iteration (115,602 Python calls in one bristle's approach and period).
+    """
     mbs = scene.mbs
     ground_node = mbs.AddNode(eii.NodePointGround())
     ground_marker = mbs.AddMarker(eii.MarkerNodeCoordinate(nodeNumber=ground_node, coordinate=0))
     motion = scene.motion
+    moving = []  # (constraint, slide factor, descent factor) of the axes that move
     for axis in range(6):
         marker = mbs.AddMarker(eii.MarkerNodeCoordinate(nodeNumber=handle_node, coordinate=axis))
-        # the handle's displacement along this axis: slide component plus descent (z only).
-        # Called several times per Newton step: plain scalar arithmetic, no arrays (a
-        # function that built the whole kinematics cost ~25 % of a bristle's solve), and
-        # none at all on an axis that never moves.
         along = float(scene.slide_axis[axis]) if axis < 3 else 0.0
         down = 1.0 if axis == 2 else 0.0
-        offset_function = 0
-        if along or down:
-            def offset_function(mbs, t, itemNumber, lOffset, along=along, down=down):
-                return along * motion.sliding(t)[0] - down * motion.descent(t)[0]
         constraint = mbs.AddObject(
             eii.ObjectConnectorCoordinate(
                 markerNumbers=[ground_marker, marker],
-                offsetUserFunction=offset_function,
+                offset=along * motion.sliding(0.0)[0] - down * motion.descent(0.0)[0],
                 visualization=eii.VObjectConnectorCoordinate(show=False),
             )
         )
+        if along or down:
+            moving.append((constraint, along, down))
         if axis < 3:
             scene.drive_sensors.append(
                 mbs.AddSensor(eii.SensorObject(objectNumber=constraint, storeInternal=True,
                                                writeToFile=False,
                                                outputVariableType=exu.OutputVariableType.Force))
             )
+
+    def drive(mbs, t):
+        slide, descent = motion.sliding(t)[0], motion.descent(t)[0]
+        for constraint, along, down in moving:
+            mbs.SetObjectParameter(constraint, "offset", along * slide - down * descent)
+
+    scene.step_hooks.append(drive)
 
 
 def _drawings(prepared: PreparedCase, bristles, gamma: float | None):
