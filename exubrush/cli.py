@@ -244,16 +244,6 @@ def sweep(sweep_file, out, scheduler, workers, retry_failed, quiet, example):
               "'--retry-failed' solves them again", RUN_FAILED)
 
 
-@contextlib.contextmanager
-def signals_redirected_lazily():
-    """Ignore Ctrl-C and SIGTERM outside the solves (the executor handles them while it
-    runs), so that files being written are finished."""
-    from exubrush.execution.signals import signals_redirected
-
-    with signals_redirected(signal.SIG_IGN):
-        yield
-
-
 @main.command()
 @click.argument("case")
 @click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE",

@@ -91,8 +91,10 @@ class DaskExecutor(Executor):
 
         def submit_more() -> None:
             """Keep IN_FLIGHT tasks per worker thread at the scheduler, no more."""
+            if not waiting or stop.is_set():
+                return
             window = IN_FLIGHT * self.workers  # asks the scheduler: workers come and go
-            while waiting and len(running) < window and not stop.is_set():
+            while waiting and len(running) < window:
                 number, task = waiting.popleft()
                 future = self.client.submit(_solve_on_worker, task.prepared, task.selection,
                                             name, number, key=f"exubrush-group-{name}-{number}",
