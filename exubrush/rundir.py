@@ -56,6 +56,24 @@ def default_directory(case) -> Path:
     return Path("results") / f"{safe_name(case.name)}-{case.model.kind}"
 
 
+def unusable_directory(path: Path) -> str | None:
+    """Why ``path`` cannot be (made) a directory: a file there or above it; None if it can."""
+    if path.exists() and not path.is_dir():
+        return "is a file, not a directory"
+    blocking = next((p for p in path.parents if p.exists() and not p.is_dir()), None)
+    if blocking is not None:
+        return f"is not a directory (a file is in the way: {blocking})"
+    return None
+
+
+def recorded_status(directory: Path) -> str | None:
+    """The ``status`` in ``directory/run.json``; None if there is none or it is unreadable."""
+    try:
+        return json.loads((directory / "run.json").read_text()).get("status")
+    except (OSError, ValueError, AttributeError):
+        return None
+
+
 class RunDirectoryError(ValueError):
     """The output directory cannot be used for this run without losing or mixing data."""
 
@@ -89,12 +107,9 @@ class RunDirectory:
         self._prepare(overwrite)
 
     def _prepare(self, overwrite: bool) -> None:
-        if self.path.exists() and not self.path.is_dir():
-            raise RunDirectoryError(f"--out {self.path}: is a file, not a directory")
-        blocking = next((p for p in self.path.parents if p.exists() and not p.is_dir()), None)
-        if blocking is not None:
-            raise RunDirectoryError(f"--out {self.path}: is not a directory (a file is in the "
-                                    f"way: {blocking})")
+        reason = unusable_directory(self.path)
+        if reason:
+            raise RunDirectoryError(f"--out {self.path}: {reason}")
         present = {p.name for p in self.path.iterdir()} if self.path.is_dir() else set()
         foreign = sorted(present - {*RESULT_FILES, CHECKPOINT} - _temporaries(present))
         if foreign:
@@ -149,13 +164,7 @@ class RunDirectory:
             return None
 
     def _finished_run(self) -> bool:
-        path = self.path / "run.json"
-        if not path.is_file():
-            return False
-        try:
-            return json.loads(path.read_text()).get("status") == "completed"
-        except (OSError, ValueError):
-            return False
+        return recorded_status(self.path) == "completed"
 
     def stored_groups(self) -> dict[int, GroupSolution]:
         """Finished groups on disk, by group index."""

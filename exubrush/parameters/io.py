@@ -25,25 +25,32 @@ def case_data(case: str) -> dict:
     """The nested mapping of a built-in case name or a TOML case file."""
     if case in BUILT_IN_CASES:
         return to_plain(BUILT_IN_CASES[case]())
-    path = Path(case)
-    if path.suffix.lower() == ".toml" and not path.exists():
-        raise ParameterError(f"case file {case!r} does not exist")
-    if path.suffix.lower() == ".toml" and not path.is_file():
-        raise ParameterError(f"case file {case!r} is not a file")
-    if path.suffix.lower() != ".toml":
+    if Path(case).suffix.lower() != ".toml":
         raise ParameterError(
             f"unknown case {case!r}: use {', '.join(BUILT_IN_CASES)} or the path of a TOML "
             "case file (see 'exubrush case orthogonal')"
         )
+    return read_toml(case, "case file")
+
+
+def read_toml(name: str, kind: str, error: type[ValueError] = ParameterError) -> dict:
+    """The TOML file ``name`` (a path as the user gave it) read as UTF-8; ``error`` with
+    one line naming the ``kind`` of file ("case file") if it is missing, not a file, not
+    UTF-8, not TOML or unreadable."""
+    path = Path(name)
+    if not path.exists():
+        raise error(f"{kind} {name!r} does not exist")
+    if not path.is_file():
+        raise error(f"{kind} {name!r} is not a file")
     try:
         return tomllib.loads(path.read_bytes().decode("utf-8"))
     except tomllib.TOMLDecodeError as err:
-        raise ParameterError(f"{path}: not valid TOML ({err})") from None
+        raise error(f"{path}: not valid TOML ({err})") from None
     except UnicodeDecodeError as err:
-        raise ParameterError(f"{path}: not UTF-8 text (byte {err.start}); case files are "
-                             "TOML, which is UTF-8") from None
+        raise error(f"{path}: not UTF-8 text (byte {err.start}); {kind}s are TOML, which "
+                    "is UTF-8") from None
     except OSError as err:
-        raise ParameterError(f"{path}: cannot be read ({err.strerror})") from None
+        raise error(f"{path}: cannot be read ({err.strerror})") from None
 
 
 def load_case(case: str, overrides: list[str] | tuple[str, ...] = ()) -> Case:

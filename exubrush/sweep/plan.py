@@ -19,7 +19,6 @@ import itertools
 import json
 import math
 import re
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -28,7 +27,7 @@ import numpy as np
 
 from exubrush.parameters.case import BUILT_IN_CASES, Case
 from exubrush.parameters.fields import ParameterError, describe_key, to_plain
-from exubrush.parameters.io import load_case
+from exubrush.parameters.io import load_case, read_toml
 from exubrush.units import UnitError, registry, to_internal
 
 SECTIONS = {
@@ -108,7 +107,7 @@ class SweepPlan:
 def read_sweep(path: str | Path) -> SweepPlan:
     """Read, check and expand the sweep file ``path`` (SweepError naming what is wrong)."""
     path = Path(path)
-    data = _read_toml(path)
+    data = read_toml(str(path), "sweep file", SweepError)
     where = path.name
     for section, value in data.items():
         if section not in SECTIONS:
@@ -151,21 +150,6 @@ def read_sweep(path: str | Path) -> SweepPlan:
     if not isinstance(name, str) or not name.strip():
         raise SweepError(f"{where}: sweep.name must be non-empty text")
     return SweepPlan(name, path, swept, runs, _execution(data.get("execution", {}), where))
-
-
-def _read_toml(path: Path) -> dict:
-    if not path.exists():
-        raise SweepError(f"sweep file {path} does not exist")
-    if not path.is_file():
-        raise SweepError(f"sweep file {path} is not a file")
-    try:
-        return tomllib.loads(path.read_bytes().decode("utf-8"))
-    except tomllib.TOMLDecodeError as err:
-        raise SweepError(f"{path}: not valid TOML ({err})") from None
-    except UnicodeDecodeError as err:
-        raise SweepError(f"{path}: not UTF-8 text (byte {err.start})") from None
-    except OSError as err:
-        raise SweepError(f"{path}: cannot be read ({err.strerror})") from None
 
 
 def _base_case(sweep: dict, path: Path) -> str:

@@ -34,7 +34,7 @@ from exubrush.parameters.case import Case
 from exubrush.parameters.fields import ParameterError, describe_key
 from exubrush.prepared import PreparedCase, prepare
 from exubrush.results import ResultsError, read_results
-from exubrush.rundir import RunDirectory, safe_name
+from exubrush.rundir import RunDirectory, recorded_status, safe_name, unusable_directory
 from exubrush.sweep.plan import SweepError, SweepPlan, SweepRun
 from exubrush.sweep.plots import plot_summary
 from exubrush.sweep.summary import METRICS, run_metrics, sensitivities, write_parquet, write_table
@@ -88,11 +88,9 @@ def default_folder(plan: SweepPlan) -> Path:
 def check_folder(folder: Path, plan: SweepPlan) -> None:
     """Refuse (SweepError) a folder that is a file, holds another sweep, or holds files
     this sweep does not write. Writes nothing."""
-    if folder.exists() and not folder.is_dir():
-        raise SweepError(f"--out {folder}: is a file, not a directory")
-    blocking = next((p for p in folder.parents if p.exists() and not p.is_dir()), None)
-    if blocking is not None:
-        raise SweepError(f"--out {folder}: a file is in the way ({blocking})")
+    reason = unusable_directory(folder)
+    if reason:
+        raise SweepError(f"--out {folder}: {reason}")
     present = {p.name for p in folder.iterdir()} if folder.is_dir() else set()
     record = folder / SWEEP_FILE
     if present and SWEEP_FILE not in present:
@@ -125,13 +123,6 @@ def claim_folder(folder: Path, plan: SweepPlan) -> None:
                   handle, indent=2)
 
 
-def _recorded_status(folder: Path) -> str | None:
-    try:
-        return json.loads((folder / "run.json").read_text()).get("status")
-    except (OSError, ValueError):
-        return None
-
-
 def run_sweep(plan: SweepPlan, folder: str | Path, executor: Executor,
               retry_failed: bool = False, progress: bool = True,
               prepared: list[PreparedCase] | None = None) -> SweepOutcome:
@@ -160,7 +151,7 @@ def run_sweep(plan: SweepPlan, folder: str | Path, executor: Executor,
                                                                           strict=True)]
     tasks, skipped = [], 0
     for number, state in enumerate(states):
-        recorded = _recorded_status(state.folder)
+        recorded = recorded_status(state.folder)
         if recorded == "completed" or (recorded == "failed" and not retry_failed):
             state.status, skipped = recorded, skipped + 1
             continue
@@ -250,8 +241,8 @@ def write_summary(plan: SweepPlan, states: list[RunState], folder: Path) -> list
         state.metrics = dict.fromkeys((m for m, _ in METRICS), math.nan)
         simulated = compute = math.nan
         if state.status in ("completed", "failed"):
-            try:
-                results = read_results(state.folder)
+            try:  # from the files, as written (9 digits), also for runs of this command:
+                results = read_results(state.folder)  # a resumed sweep's table is the same
                 state.metrics = run_metrics(results)
                 simulated = float(results.metadata.get("simulated_time_s", math.nan))
                 compute = float(results.metadata.get("solver_wall_time_s_sum", math.nan))
