@@ -43,6 +43,7 @@ POLL = 0.2  # s between two looks at the futures and the progress queue
 CHECK_INTERVAL = 0.5  # s of wall time between a worker's looks at the stop event
 REPORT_INTERVAL = 1.0  # s of wall time between a worker's progress reports
 CONNECT_TIMEOUT = 10.0  # s to reach a scheduler before giving up
+LOCAL_WORKERS_PER_CORE = 4  # most processes of a local cluster per core
 IN_FLIGHT = 3  # tasks per worker thread handed to the scheduler at a time (one runs, two wait)
 # A worker solves in a thread beside its event loop; what wakes that loop takes the GIL from
 # the solve, which calls Python every step. These make a local worker's solves 7-10 % faster
@@ -225,7 +226,13 @@ def dask_executor(scheduler: str = "local", workers: int | None = None,
     processes, default: every core) or on the cluster whose scheduler is at ``scheduler``
     (``tcp://HOST:PORT``); ClusterError, naming ``label``, if it cannot be reached."""
     if scheduler == "local":
-        with local_cluster(workers or os.cpu_count() or 1) as client:
+        cores = os.cpu_count() or 1
+        workers = workers or cores
+        if workers > LOCAL_WORKERS_PER_CORE * cores:
+            raise ClusterError(f"{workers} local workers: at most {LOCAL_WORKERS_PER_CORE} per "
+                               f"core ({LOCAL_WORKERS_PER_CORE * cores} here); more only slow "
+                               "each other's solves: give fewer, or a --scheduler")
+        with local_cluster(workers) as client:
             yield DaskExecutor(client, local=True)
         return
     client = connect(scheduler, timeout, label)

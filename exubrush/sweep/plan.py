@@ -40,6 +40,7 @@ RANGE_KEYS = ("from", "to", "count", "scale")
 SCALES = ("linear", "log")
 MAX_RUNS = 1000  # default bound on the runs of one sweep (sweep.max_runs raises it)
 DEFAULT_TIMEOUT = 10.0  # s to reach a scheduler
+MAX_TIMEOUT = 600.0  # s: a longer wait for a scheduler is a hang, not a setting
 NAME_VALUE_DIGITS = 4  # significant digits of a value in a run's folder name
 
 
@@ -130,20 +131,22 @@ def read_sweep(path: str | Path) -> SweepPlan:
     if not grid and sample is None and seeds is None:
         raise SweepError(f"{where}: nothing varies; give [grid] values, a [sample] or "
                          "sweep.seeds (see 'exubrush sweep --example')")
-    varied = [_grid_values(key, value, f"{where}: grid.{key}") for key, value in grid.items()]
+    varied = [_grid_values(key, value, f"{where}: grid.{key}", limit)
+              for key, value in grid.items()]
     if sample is not None:
-        varied.append(_sampled(sample, where, set(grid)))
+        varied.append(_sampled(sample, where, set(grid), limit))
     if seeds is not None:
         if "head.seed" in grid:
             raise SweepError(f"{where}: head.seed is in [grid] and in sweep.seeds; use one")
         varied.append(Varied((Swept("head.seed", ""),), [[("head.seed", s)] for s in seeds]))
     swept = tuple(column for group in varied for column in group.columns)
     _check_no_conflict(common, [column.key for column in swept], where)
+    expanded = math.prod(len(group.values) for group in varied)  # before making them
+    if expanded > limit:
+        raise SweepError(f"{where}: expands to {expanded} runs, more than "
+                         f"sweep.max_runs = {limit}; check the counts or raise sweep.max_runs")
     combinations = [[pair for part in combo for pair in part]
                     for combo in itertools.product(*(group.values for group in varied))]
-    if len(combinations) > limit:
-        raise SweepError(f"{where}: expands to {len(combinations)} runs, more than "
-                         f"sweep.max_runs = {limit}; check the counts or raise sweep.max_runs")
     runs = tuple(_run(number, values, base, common, where)
                  for number, values in enumerate(combinations))
     name = sweep.get("name", path.stem)
@@ -176,6 +179,14 @@ def _whole(value: Any, where: str, minimum: int) -> int:
     return value
 
 
+def _at_most(count: int, limit: int, where: str) -> int:
+    """``count`` values, refused before they are made if more than the sweep may run."""
+    if count > limit:
+        raise SweepError(f"{where}: {count} values are more than sweep.max_runs = {limit} "
+                         "runs; lower it or raise sweep.max_runs")
+    return count
+
+
 def _seeds(sweep: dict, where: str) -> list[int] | None:
     if "seeds" not in sweep:
         return None
@@ -200,11 +211,11 @@ def _parameter(key: str, where: str) -> tuple[Any, dict]:
         raise SweepError(str(err)) from None
 
 
-def _grid_values(key: str, value: Any, where: str) -> Varied:
-    """The values of one grid entry: a list or a range."""
+def _grid_values(key: str, value: Any, where: str, limit: int) -> Varied:
+    """The values of one grid entry: a list or a range (of at most ``limit`` values)."""
     annotation, meta = _parameter(key, where)
     if isinstance(value, dict):
-        unit, values = _range_values(value, annotation, meta, where)
+        unit, values = _range_values(value, annotation, meta, where, limit)
         return Varied((Swept(key, unit),), [[(key, v)] for v in values])
     if not isinstance(value, list) or not value:
         raise SweepError(f"{where}: expected a non-empty list of values or a range "
@@ -216,7 +227,8 @@ def _grid_values(key: str, value: Any, where: str) -> Varied:
                   [[(key, v)] for v in value])
 
 
-def _range_values(spec: dict, annotation: Any, meta: dict, where: str) -> tuple[str, list]:
+def _range_values(spec: dict, annotation: Any, meta: dict, where: str,
+                  limit: int) -> tuple[str, list]:
     """Evenly spaced values (linear or logarithmic) of a range, as display-unit texts."""
     unknown = [k for k in spec if k not in RANGE_KEYS]
     if unknown:
@@ -225,7 +237,7 @@ def _range_values(spec: dict, annotation: Any, meta: dict, where: str) -> tuple[
     count = spec.get("count")
     if count is None:
         raise SweepError(f"{where}: a range needs count (how many values, >= 2)")
-    count = _whole(count, f"{where}.count", minimum=2)
+    count = _at_most(_whole(count, f"{where}.count", minimum=2), limit, f"{where}.count")
     low, high, scale, unit = _bounds(spec, annotation, meta, where)
     values = np.geomspace(low, high, count) if scale == "log" else np.linspace(low, high, count)
     return unit, [_quantity(v, unit) for v in values]
@@ -244,6 +256,9 @@ def _bounds(spec: dict, annotation: Any, meta: dict, where: str):
     low, high = (_magnitude(spec[k], meta, f"{where}.{k}") for k in ("from", "to"))
     if not low < high:
         raise SweepError(f"{where}: from ({spec['from']}) must be below to ({spec['to']})")
+    if not math.isfinite(high - low):
+        raise SweepError(f"{where}: from ({spec['from']}) to ({spec['to']}) spans more than a "
+                         "number can hold")
     scale = spec.get("scale", "linear")
     if scale not in SCALES:
         raise SweepError(f"{where}.scale: {scale!r} is not one of {', '.join(SCALES)}")
@@ -273,9 +288,10 @@ def _quantity(magnitude: float, unit: str) -> Any:
     return f"{rounded!r} {unit}" if unit else rounded
 
 
-def _sampled(sample: dict, where: str, grid_keys: set[str]) -> Varied:
+def _sampled(sample: dict, where: str, grid_keys: set[str], limit: int) -> Varied:
     """Latin hypercube points over [sample.ranges] (scipy.stats.qmc), seeded."""
-    count = _whole(sample.get("count"), f"{where}: sample.count", minimum=1)
+    count = _at_most(_whole(sample.get("count"), f"{where}: sample.count", minimum=1), limit,
+                     f"{where}: sample.count")
     seed = _whole(sample.get("seed", 0), f"{where}: sample.seed", minimum=0)
     ranges = sample.get("ranges")
     if not isinstance(ranges, dict) or not ranges:
@@ -364,7 +380,7 @@ def _execution(data: dict, where: str) -> Execution:
             timeout = to_internal(data["timeout"], "s")
         except UnitError as err:
             raise SweepError(f"{where}: execution.timeout: {err}") from None
-        if not 0.0 < timeout < math.inf:
-            raise SweepError(f"{where}: execution.timeout must be a positive time, e.g. "
-                             "\"30 s\"")
+        if not 0.0 < timeout <= MAX_TIMEOUT:
+            raise SweepError(f"{where}: execution.timeout must be a positive time of at most "
+                             f"{MAX_TIMEOUT:g} s, e.g. \"30 s\"")
     return Execution(scheduler, workers, timeout)

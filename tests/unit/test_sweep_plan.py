@@ -153,6 +153,25 @@ MALFORMED = [
     (SMALL + '[grid]\n"head.seed" = [1]\n[execution]\ntimeout = 10\n',
      "execution.timeout: 10 has no unit"),
     ("[sweep\n", "not valid TOML"),
+    # counts far beyond what may run: refused before any value is made
+    (SMALL + '[grid]\n"head.bristle.length" = '
+             '{ from = "4 mm", to = "5 mm", count = 1000000000000 }\n',
+     "count: 1000000000000 values are more than sweep.max_runs = 1000 runs"),
+    (SMALL + '[sample]\ncount = 1000000000000\n[sample.ranges]\n"contact.dynamic_friction" = '
+             '{ from = 0.5, to = 0.7 }\n',
+     "sample.count: 1000000000000 values are more than sweep.max_runs = 1000 runs"),
+    (SMALL + "[grid]\n" + "".join(
+        f'"{key}" = {{ from = "4 mm", to = "5 mm", count = 1000 }}\n'
+        for key in ("head.bristle.length", "head.bristle.width", "head.bristle.height",
+                    "head.pitch_along", "head.pitch_across", "motion.amplitude")),
+     "expands to 1000000000000000000 runs, more than sweep.max_runs = 1000"),
+    (SMALL + '[grid]\n"head.bristle.length" = { from = 1e308, to = 1e308, count = 2 }\n',
+     "1e+308 has no unit"),
+    (SMALL + '[grid]\n"head.bristle.length" = '
+             '{ from = "-1e308 mm", to = "1e308 mm", count = 3 }\n',
+     "from (-1e308 mm) to (1e308 mm) spans more than a number can hold"),
+    (SMALL + '[grid]\n"head.seed" = [1]\n[execution]\ntimeout = "1e308 s"\n',
+     "execution.timeout must be a positive time of at most 600 s"),
 ]
 
 
@@ -175,6 +194,7 @@ def test_malformed_sweep_is_refused_in_one_line_with_exit_2_and_nothing_written(
 SCHEDULER_FAULTS = [
     ('scheduler = "foo:8786"', [], "execution.scheduler 'foo:8786': not a scheduler address"),
     ('scheduler = "local"', ["--scheduler", "tcp://"], "--scheduler 'tcp://': not a scheduler"),
+    ("workers = 1000000000000", [], "1000000000000 local workers: at most 4 per core"),
     # nothing listens on port 9 (discard) here: refused until the timeout
     ('scheduler = "tcp://127.0.0.1:9"\ntimeout = "1 s"', [],
      "execution.scheduler tcp://127.0.0.1:9: no scheduler answered within 1 s"),
