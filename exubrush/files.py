@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+import csv
+import math
 import os
 import tempfile
+from collections.abc import Iterable, Sequence
 from pathlib import Path
 
 
@@ -30,3 +33,17 @@ class atomic_file:
         else:
             os.unlink(self.temporary)
         return False
+
+
+def write_csv(path: Path, header: Sequence[str], rows: Iterable[Sequence]) -> None:
+    """A CSV table written whole (:class:`atomic_file`): numbers to 9 significant digits,
+    NaN and None as empty cells, anything else as it is."""
+    def cell(value):
+        if value is None or (isinstance(value, float) and math.isnan(value)):
+            return ""
+        return f"{value:.9g}" if isinstance(value, float) else value
+
+    with atomic_file(path, "w", newline="") as handle:
+        writer = csv.writer(handle)
+        writer.writerow(header)
+        writer.writerows([cell(v) for v in row] for row in rows)

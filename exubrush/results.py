@@ -9,14 +9,13 @@ inertia removed): ``normal_force`` is positive when the head presses on the surf
 
 from __future__ import annotations
 
-import csv
 import json
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-from exubrush.files import atomic_file
+from exubrush.files import atomic_file, write_csv
 from exubrush.metrics import friction_coefficient, travelled_distance
 from exubrush.parameters.case import Case
 from exubrush.parameters.fields import ParameterError, build
@@ -95,11 +94,7 @@ class Results:
             self._save_metadata(directory)
             return directory
         columns = self.columns()
-        with atomic_file(directory / "forces.csv", "w", newline="") as handle:
-            writer = csv.writer(handle)
-            writer.writerow(columns)
-            for row in zip(*columns.values(), strict=True):
-                writer.writerow(["" if np.isnan(v) else f"{v:.9g}" for v in row])
+        write_csv(directory / "forces.csv", list(columns), zip(*columns.values(), strict=True))
         with atomic_file(directory / "shapes.npz", "wb") as handle:
             extra = {} if self.shape_coordinates is None else {
                 "coordinates": self.shape_coordinates}

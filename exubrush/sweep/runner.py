@@ -29,7 +29,7 @@ import numpy as np
 from exubrush.assemble import RunFacts, assemble_results
 from exubrush.execution import Executor, SolveTask
 from exubrush.execution.progress import SimulatedTimeBar
-from exubrush.files import atomic_file
+from exubrush.files import atomic_file, write_csv
 from exubrush.parameters.case import Case
 from exubrush.parameters.fields import ParameterError, describe_key
 from exubrush.prepared import PreparedCase, prepare
@@ -37,7 +37,7 @@ from exubrush.results import ResultsError, read_results
 from exubrush.rundir import RunDirectory, recorded_status, safe_name, unusable_directory
 from exubrush.sweep.plan import SweepError, SweepPlan, SweepRun
 from exubrush.sweep.plots import plot_summary
-from exubrush.sweep.summary import METRICS, run_metrics, sensitivities, write_parquet, write_table
+from exubrush.sweep.summary import METRICS, run_metrics, sensitivities, write_parquet
 from exubrush.units import UnitError, registry
 
 SWEEP_FILE = "sweep.json"
@@ -250,7 +250,7 @@ def write_summary(plan: SweepPlan, states: list[RunState], folder: Path) -> list
                 pass  # a failed run that stored no time series: its row stays empty
         rows.append([state.run.name, state.status, *(v[number] for v in values.values()),
                      compute, simulated, *state.metrics.values()])
-    write_table(folder / "summary.csv", header, rows)
+    write_csv(folder / "summary.csv", header, rows)
     written = ["summary.csv"]
     if write_parquet(folder / "summary.parquet", header, rows):
         written.append("summary.parquet")
@@ -262,7 +262,7 @@ def write_summary(plan: SweepPlan, states: list[RunState], folder: Path) -> list
         measured = {name: np.array([states[n].metrics[name] for n in completed])
                     for name, _ in METRICS}
         table = sensitivities(numeric, measured)
-        write_table(folder / "sensitivity.csv", ["metric", *numeric],
+        write_csv(folder / "sensitivity.csv", ["metric", *numeric],
                     [[metric, *by_parameter.values()] for metric, by_parameter in table.items()])
         written.append("sensitivity.csv")
     written += plot_summary(plan.name, values, [s.status for s in states],

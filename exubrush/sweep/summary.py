@@ -20,7 +20,6 @@ left out: it repeats a run, its spread is the metric's scatter, not a trend.
 
 from __future__ import annotations
 
-import csv
 import math
 from collections.abc import Sequence
 from pathlib import Path
@@ -70,19 +69,6 @@ def run_metrics(results) -> dict[str, float]:
         metrics["largest_tip_deflection"] = float(
             np.max(np.linalg.norm(span - span[0], axis=-1)))
     return metrics
-
-
-def write_table(path: Path, header: Sequence[str], rows: Sequence[Sequence]) -> None:
-    """A CSV file written whole: numbers to 9 significant digits, NaN and None empty."""
-    def cell(value):
-        if value is None or (isinstance(value, float) and math.isnan(value)):
-            return ""
-        return f"{value:.9g}" if isinstance(value, float) else value
-
-    with atomic_file(path, "w", newline="") as handle:
-        writer = csv.writer(handle)
-        writer.writerow(header)
-        writer.writerows([[cell(v) for v in row] for row in rows])
 
 
 def write_parquet(path: Path, header: Sequence[str], rows: Sequence[Sequence]) -> bool:

@@ -25,6 +25,7 @@ Output: ``sweep-dask.md`` and ``.csv`` in ``--out``.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import csv
 import os
 import platform
@@ -66,20 +67,9 @@ def swept(executor_factory):
     return run
 
 
-class _Context:
-    def __init__(self, executor):
-        self.executor = executor
-
-    def __enter__(self):
-        return self.executor
-
-    def __exit__(self, *exc):
-        return False
-
-
 VARIANTS = {
     "runs one after another, process pool (2)": sequential_pool,
-    "sweep, process pool (2)": swept(lambda: _Context(ProcessExecutor(2))),
+    "sweep, process pool (2)": swept(lambda: contextlib.nullcontext(ProcessExecutor(2))),
     "sweep, Dask local cluster (2)": swept(lambda: dask_executor("local", 2)),
     "sweep, Dask local cluster (1)": swept(lambda: dask_executor("local", 1)),
 }
