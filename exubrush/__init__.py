@@ -11,9 +11,11 @@ The names below are imported on first use, so that ``import exubrush`` stays lig
 Exudyn, no matplotlib) for a script that only reads parameters or results.
 """
 
+from exubrush.exudyn_build import choose_exudyn_build
 from exubrush.provenance import package_version
 
 __version__ = package_version()
+choose_exudyn_build()  # Exudyn's fast build in every process that imports exubrush first
 
 _API = {
     "load_case": "exubrush.parameters.io",
