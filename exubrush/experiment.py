@@ -259,6 +259,19 @@ def _flat_means(series: ForceSeries, mask: np.ndarray) -> dict:
             "friction_coefficient": tangential / normal if normal > 0.0 else float("nan")}
 
 
+def stroke_flat_means(series: ForceSeries, flat_speed_fraction: float) -> list[dict]:
+    """Flat-zone means of every whole stroke of ``series`` (one simulation or measurement on
+    its own samples): a list of {index, direction, normal_force, tangential_force,
+    friction_coefficient} (N, N, -), in stroke order (see :func:`strokes`)."""
+    rows = []
+    for stroke in strokes(series.time, series.slide_velocity, flat_speed_fraction):
+        mask = (series.time >= stroke.flat_start) & (series.time <= stroke.flat_end)
+        if mask.sum() >= 2:
+            rows.append({"index": stroke.index, "direction": stroke.direction,
+                         **_flat_means(series, mask)})
+    return rows
+
+
 def compare(aligned: Aligned, simulated_strokes: list[Stroke]) -> dict:
     """Per-stroke flat-zone means and per-reversal peaks, simulation against measurement.
 

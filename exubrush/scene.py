@@ -173,7 +173,8 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
         else:
             items = add_prb_bristle(mbs, handle["bodyNumber"], bristle, material, prb.gamma,
                                     prb.stiffness_coefficient, origin, drawn,
-                                    case.model.rotation)
+                                    case.model.rotation, case.model.prb_link)
+        scene.keep_alive.extend(items.user_functions)
         scene.node_sensors.append([
             mbs.AddSensor(eii.SensorNode(nodeNumber=n, storeInternal=True, writeToFile=False,
                                          outputVariableType=exu.OutputVariableType.Position))

@@ -50,3 +50,34 @@ def tip_loaded_cantilever(
     if not mbs.SolveStatic(static_settings(load_steps)):
         raise RuntimeError("static solve of the cantilever did not converge")
     return np.asarray(mbs.GetNodeOutput(items.nodes[-1], exu.OutputVariableType.Position))
+
+
+def pinned_prb_push(
+    bristle: BristleGeometry,
+    material: Material,
+    force: float,
+    gamma: float = 0.8517,
+    stiffness_coefficient: float = 2.67617,
+    load_steps: int = 40,
+) -> float:
+    """Shortening [mm] of a PRB bristle with the buckling link (exubrush.models.buckling),
+    clamped at its root, its tip held on the bristle's axis (free to slide along it and to
+    rotate: a pinned tip) and pushed along the axis towards the root by ``force`` [N]."""
+    SC = exu.SystemContainer()
+    mbs = SC.AddSystem()
+    ground = mbs.AddObject(eii.ObjectGround())
+    items = add_prb_bristle(mbs, ground, bristle, material, gamma, stiffness_coefficient)
+    tip_point = bristle.point(bristle.length)
+    on_axis = mbs.AddMarker(eii.MarkerBodyRigid(
+        bodyNumber=ground, localHT=exu.HT(rotation=np.asarray(bristle.frame),
+                                          translation=list(tip_point))))
+    tip = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=items.tip_body, localPosition=[0, 0, 0]))
+    mbs.AddObject(eii.ObjectJointGeneric(markerNumbers=[on_axis, tip],
+                                         constrainedAxes=[0, 1, 1, 0, 0, 0]))
+    axis = np.asarray(bristle.frame)[:, 0]
+    mbs.AddLoad(eii.LoadForceVector(markerNumber=tip, loadVector=list(-force * axis)))
+    mbs.Assemble()
+    if not mbs.SolveStatic(static_settings(load_steps)):
+        raise RuntimeError("static solve of the pushed PRB bristle did not converge")
+    position = np.asarray(mbs.GetNodeOutput(items.nodes[-1], exu.OutputVariableType.Position))
+    return float(np.dot(tip_point - position, axis))

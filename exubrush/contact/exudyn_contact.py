@@ -21,7 +21,8 @@ import exudyn as exu
 import exudyn.itemInterface as eii
 from exudyn.advancedUtilities import CreateSymbolicUserFunction
 
-from exubrush.contact.laws import FLOAT_MATH, cubic_step, sphere_plane_force
+from exubrush.contact.laws import cubic_step, sphere_plane_force
+from exubrush.float_math import FLOAT_MATH
 from exubrush.parameters.case import ContactLaw
 
 # half the side of the square of the plane z = 0 that the built-in contact's triangle

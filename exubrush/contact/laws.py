@@ -1,9 +1,8 @@
 """Contact force laws of a tip sphere on a rigid surface (pure, mm-N-s units).
 
-Each law is written once against a small "math back end" (an object providing ``sqrt``,
-``abs``, ``sign``, ``min``, ``max``, ``IfThenElse``) so that the same code runs on floats
-(:data:`FLOAT_MATH`) and on Exudyn's symbolic expressions (``exudyn.symbolic``), which the
-Exudyn adapter records into a C++ user function.
+Each law is written once against a small "math back end" (exubrush.float_math) so that
+the same code runs on floats (``FLOAT_MATH``) and on Exudyn's symbolic expressions
+(``exudyn.symbolic``), which the Exudyn adapter records into a C++ user function.
 
 Normal force, Hertz-type penalty with Flores-type damping (the paper's eq. 14)::
 
@@ -22,27 +21,12 @@ No stiction state: the law is regularised.
 
 from __future__ import annotations
 
-import math
-from types import SimpleNamespace
 from typing import TYPE_CHECKING
+
+from exubrush.float_math import FLOAT_MATH
 
 if TYPE_CHECKING:  # the laws read the parameters' attributes only: no import at run time
     from exubrush.parameters.case import ContactLaw
-
-
-def _float_if(condition, if_true, if_false):
-    return if_true if condition else if_false
-
-
-FLOAT_MATH = SimpleNamespace(
-    sqrt=math.sqrt,
-    abs=abs,
-    sign=lambda x: (x > 0) - (x < 0),
-    min=min,
-    max=max,
-    IfThenElse=_float_if,
-)
-"""Math back end for plain Python floats."""
 
 
 def cubic_step(x, x0, h0, x1, h1, m=FLOAT_MATH):

@@ -27,11 +27,14 @@ class BristleItems:
         Body carrying the tip sphere (its node is at the sphere centre).
     connectors : list of ObjectIndex
         Spring-dampers (and joints) of the bristle, root first.
+    user_functions : list
+        Symbolic user functions of its connectors: keep them alive as long as the system.
     """
 
     nodes: list = field(default_factory=list)
     bodies: list = field(default_factory=list)
     connectors: list = field(default_factory=list)
+    user_functions: list = field(default_factory=list)
 
     @property
     def tip_body(self):

@@ -1,17 +1,28 @@
 """Pseudo-rigid-body model (PRB, Howell, extended to 3-D) of a bristle in Exudyn.
 
 The stub from the root to the characteristic pivot, (1 - γ)l long, is part of the handle;
-the link from the pivot to the tip, γl long, is one rigid body on a spherical joint, held
-by three torsional springs and dampers (k_x, k_y, k_z; C = damping_time · K). The springs
-act on the rotation vector of the link relative to its upright frame (Exudyn's intrinsic
-formulation), which stays regular for any bending angle.
+the link from the pivot to the tip, γl long, is one rigid body held by three torsional
+springs and dampers (k_x, k_y, k_z; C = damping_time · K). The springs act on the rotation
+vector of the link relative to its upright frame (Exudyn's intrinsic formulation), which
+stays regular for any bending angle.
+
+Two links (``model.prb_link``):
+
+- ``"buckling"`` (default): the link may slide along its own axis through the pivot (a
+  generic joint that holds the pivot on the link's axis and leaves the rotations free),
+  against the axial spring of :mod:`exubrush.models.buckling`: as stiff as the bristle in
+  compression up to the buckling load, then nearly constant, so that a pushed bristle
+  shortens and passes under its pivot;
+- ``"rigid"``: the paper's link of fixed length on a spherical joint.
 """
 
 from __future__ import annotations
 
+import exudyn as exu
 import exudyn.graphics as graphics
 import exudyn.itemInterface as eii
 import numpy as np
+from exudyn.advancedUtilities import CreateSymbolicUserFunction
 
 from exubrush.models.assembly import (
     BristleItems,
@@ -22,6 +33,7 @@ from exubrush.models.assembly import (
     slice_inertia,
     tip_sphere_inertia,
 )
+from exubrush.models.buckling import axial_force, clamped_pinned_load
 from exubrush.models.geometry import BristleGeometry
 from exubrush.models.stiffness import prb_torsional_stiffness
 from exubrush.parameters.case import Material
@@ -37,6 +49,7 @@ def add_prb_bristle(
     handle_position=(0.0, 0.0, 0.0),
     drawn: bool = False,
     rotation: str = "euler-parameters",
+    link: str = "buckling",
 ) -> BristleItems:
     """Add a PRB bristle clamped to ``handle_body``.
 
@@ -52,8 +65,10 @@ def add_prb_bristle(
     rotation : str
         Rotation coordinates of the link's node
         (:data:`exubrush.models.assembly.NODE_TYPES`).
+    link : str
+        ``"buckling"`` (sliding link with the axial spring) or ``"rigid"`` (module text).
     """
-    link = gamma * bristle.length
+    link_kind, link = link, gamma * bristle.length
     k = prb_torsional_stiffness(
         bristle.section, material.youngs_modulus, material.shear_modulus,
         bristle.length, gamma, stiffness_coefficient,
@@ -68,14 +83,51 @@ def add_prb_bristle(
     pivot_on_handle = rigid_marker(mbs, handle_body, bristle.point(bristle.length - link),
                                    bristle.frame)
     pivot_on_link = rigid_marker(mbs, body, [-link, 0.0, 0.0])
-    joint = mbs.AddObject(
-        eii.ObjectJointSpherical(
+    if link_kind == "rigid":
+        joint = mbs.AddObject(eii.ObjectJointSpherical(
             markerNumbers=[pivot_on_handle, pivot_on_link],
-            visualization=eii.VObjectJointSpherical(show=False),
-        )
-    )
+            visualization=eii.VObjectJointSpherical(show=False)))
+        springs = add_spring_damper(mbs, pivot_on_handle, pivot_on_link, K, C)
+        return BristleItems(nodes=[node], bodies=[body], connectors=[joint, springs])
+    # the handle's pivot stays on the link's axis (y, z in the link frame); the link slides
+    joint = mbs.AddObject(eii.ObjectJointGeneric(
+        markerNumbers=[pivot_on_link, pivot_on_handle], constrainedAxes=[0, 1, 1, 0, 0, 0],
+        visualization=eii.VObjectJointGeneric(show=False)))
     springs = add_spring_damper(mbs, pivot_on_handle, pivot_on_link, K, C)
-    return BristleItems(nodes=[node], bodies=[body], connectors=[joint, springs])
+    axial, law = _add_axial_spring(mbs, pivot_on_handle, body, bristle, material, link)
+    return BristleItems(nodes=[node], bodies=[body], connectors=[joint, springs, axial],
+                        user_functions=[law])
+
+
+def axial_spring_constants(bristle: BristleGeometry, material: Material) -> tuple[float, float]:
+    """(k_a [N/mm], P_b [N]) of the sliding link's axial spring: EA/l and the clamped-pinned
+    buckling load about the section's weaker axis (exubrush.models.buckling)."""
+    section = bristle.section
+    stiffness = material.youngs_modulus * section.area / bristle.length
+    weaker = min(section.second_moment_y, section.second_moment_z)
+    return stiffness, clamped_pinned_load(material.youngs_modulus * weaker, bristle.length)
+
+
+def _add_axial_spring(mbs, pivot_on_handle, body, bristle, material, link_length):
+    """Spring-damper from the handle's pivot to the tip centre (reference length γl) with
+    the buckling law as a symbolic user function; its damping is damping_time · k_a."""
+    stiffness, buckling = axial_spring_constants(bristle, material)
+    damping = material.damping_time * stiffness
+
+    def tension(mbs, t, itemNumber, deltaL, deltaL_t, stiffness_, damping_, force_):
+        # Exudyn's scalar force is a tension; the law's F is a compression of s = -deltaL
+        return -axial_force(-deltaL, stiffness, buckling, bristle.length, exu.symbolic) \
+            + damping * deltaL_t
+
+    law = CreateSymbolicUserFunction(mbs, tension, "springForceUserFunction",
+                                     itemTypeName="ObjectConnectorSpringDamper")
+    tip_marker = mbs.AddMarker(eii.MarkerBodyPosition(bodyNumber=body,
+                                                      localPosition=[0.0, 0.0, 0.0]))
+    spring = mbs.AddObject(eii.ObjectConnectorSpringDamper(
+        markerNumbers=[pivot_on_handle, tip_marker], referenceLength=link_length,
+        stiffness=stiffness, damping=damping, springForceUserFunction=law,
+        visualization=eii.VObjectConnectorSpringDamper(show=False)))
+    return spring, law
 
 
 def stub_graphics(bristle: BristleGeometry, gamma: float) -> list:

@@ -165,6 +165,13 @@ class Model(Parameters):
         "constraint) or rotation-vector (Exudyn's Lie-group node, 3 per node)",
         "text", choices=("euler-parameters", "rotation-vector"),
     )
+    prb_link: str = param(
+        "buckling",
+        "PRB: 'buckling' lets the link shorten along its axis against the bristle's axial "
+        "stiffness, which gives way at the clamped-pinned buckling load (exubrush.models."
+        "buckling), so a pushed bristle snaps through; 'rigid' is the paper's link",
+        "text", choices=("buckling", "rigid"),
+    )
     prb_parameters: str = param(
         "howell-table",
         "PRB: 'howell-table' interpolates gamma, K_theta in Howell's table at n; 'fitted' "

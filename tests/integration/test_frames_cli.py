@@ -30,15 +30,16 @@ def test_prb_drawing_puts_the_pivot_on_the_stub(two_model_runs):
     gamma = json.loads((runs / "prb" / "run.json").read_text())["derived"]["prb_gamma"]
     stub = np.linalg.norm(shapes.lines[:, :, 1] - shapes.lines[:, :, 0], axis=-1)
     link = np.linalg.norm(shapes.lines[:, :, 2] - shapes.lines[:, :, 1], axis=-1)
-    # stub (1 - γ) l fixed to the handle and a rigid link γ l (l = 5 mm, default bristle);
-    # 3e-4 mm (7e-5 of the link; a misplaced pivot would be off by millimetres): the joint
-    # holds the length only to the Newton tolerance (rtol 1e-6 on a residual that mixes
-    # forces and the joint's position error), seen 1.2e-4 mm long at one sample; and shapes
-    # are linearly interpolated onto the output grid between step ends
-    # (simulation.on_output_grid), where the chord of the tip's arc over one step of at
-    # most 2 ms is up to ~6e-5 mm shorter
+    # stub (1 - γ) l fixed to the handle; the link γ l long when unloaded, shorter where the
+    # bristle is pushed (its sliding link, exubrush.models.buckling), never longer. 3e-4 mm
+    # (7e-5 of the link; a misplaced pivot would be off by millimetres): the joint holds the
+    # pivot on the link's axis only to the Newton tolerance, and shapes are linearly
+    # interpolated onto the output grid between step ends (simulation.on_output_grid),
+    # where the chord of the tip's arc over one step of at most 2 ms is up to ~6e-5 mm
+    # shorter. In this short run the bristles are pressed, not buckled: < 2 % shorter.
     np.testing.assert_allclose(stub, (1.0 - gamma) * 5.0, rtol=1e-12)
-    np.testing.assert_allclose(link, gamma * 5.0, atol=3e-4)
+    assert np.all(link <= gamma * 5.0 + 3e-4)
+    assert np.all(link >= 0.98 * gamma * 5.0)
 
 
 @pytest.mark.slow
