@@ -102,6 +102,11 @@ def solve_group(prepared: PreparedCase, selection: tuple[int, ...],
     drive = [np.asarray(scene.mbs.GetSensorStoredData(s)) for s in scene.drive_sensors]
     histories = [[np.asarray(scene.mbs.GetSensorStoredData(s)) for s in sensors]
                  for sensors in scene.node_sensors]
+    statistics = solver_statistics(scene.mbs)
+    # Exudyn keeps a system container alive after its last Python reference is gone: without
+    # this, a worker's memory grew by the stored sensor data of every group it solved
+    # (0.9 MB per default bristle and 2 periods, validation/benchmarks/README.md)
+    scene.system_container.Reset()
     n = min(len(h) for h in [*drive, *(h for nodes in histories for h in nodes)])
     nodes = np.array([[h[:n, 1:4] for h in bristle] for bristle in histories])
     reaction = np.column_stack([d[:n, 1] for d in drive]) if n else np.zeros((0, 3))
@@ -125,7 +130,7 @@ def solve_group(prepared: PreparedCase, selection: tuple[int, ...],
         reaction=reaction,
         nodes=nodes,
         coordinates=coordinates,
-        statistics=solver_statistics(scene.mbs),
+        statistics=statistics,
         completed=bool(completed and n > 0 and drive[0][n - 1, 0] >= end_time - 1e-9),
         message=message,
         wall_time=wall,
