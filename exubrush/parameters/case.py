@@ -214,7 +214,8 @@ class Motion(Parameters):
     approach_friction: str = param(
         "auto",
         "friction while approaching: on; off (blended in during the hold); auto = on for "
-        "DFM, off for PRB (a rigid PRB link with a sticking tip cannot buckle and jams)",
+        "DFM, off for PRB (a rigid PRB link with a sticking tip jams; with the buckling "
+        "link a sticking tip leaves PRB two strokes longer off DFM's forces)",
         "text", choices=("auto", "on", "off"),
     )
 
