@@ -49,7 +49,7 @@ def add_prb_bristle(
     handle_position=(0.0, 0.0, 0.0),
     drawn: bool = False,
     rotation: str = "euler-parameters",
-    link: str = "buckling",
+    link_kind: str = "buckling",
 ) -> BristleItems:
     """Add a PRB bristle clamped to ``handle_body``.
 
@@ -65,10 +65,10 @@ def add_prb_bristle(
     rotation : str
         Rotation coordinates of the link's node
         (:data:`exubrush.models.assembly.NODE_TYPES`).
-    link : str
+    link_kind : str
         ``"buckling"`` (sliding link with the axial spring) or ``"rigid"`` (module text).
     """
-    link_kind, link = link, gamma * bristle.length
+    link = gamma * bristle.length
     k = prb_torsional_stiffness(
         bristle.section, material.youngs_modulus, material.shear_modulus,
         bristle.length, gamma, stiffness_coefficient,
