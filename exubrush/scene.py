@@ -54,6 +54,13 @@ class Scene:
     # callables (mbs, t) that the solve must call before every step
     step_hooks: list = field(default_factory=list)
 
+    def run_step_hooks(self, mbs, t) -> bool:
+        """Call every step hook; True (go on). Fit for Exudyn's pre-step user function
+        where a solve needs nothing else before a step."""
+        for hook in self.step_hooks:
+            hook(mbs, t)
+        return True
+
 
 def _add_drive(scene: Scene, handle_node) -> None:
     """Prescribe the handle's six coordinates: the slide along the slide axis plus the

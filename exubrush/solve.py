@@ -63,8 +63,7 @@ def solve_group(prepared: PreparedCase, selection: tuple[int, ...],
     status = {"reason": ""}
 
     def before_step(mbs, t):
-        for hook in scene.step_hooks:
-            hook(mbs, t)
+        scene.run_step_hooks(mbs, t)
         if t - reported[0] >= PROGRESS_STEP:
             if monitor is not None and monitor.stop_requested():
                 status["reason"] = INTERRUPTED

@@ -30,12 +30,7 @@ def floor_group(prepared: PreparedCase, selection: tuple[int, ...]) -> dict:
     case = prepared.case
     settings = dynamic_settings(case.solver, scene.motion.end_time, case.output.interval)
 
-    def before_step(mbs, t):
-        for hook in scene.step_hooks:
-            hook(mbs, t)
-        return True
-
-    scene.mbs.SetPreStepUserFunction(before_step)
+    scene.mbs.SetPreStepUserFunction(scene.run_step_hooks)
     start = time.perf_counter()
     if not scene.mbs.SolveDynamic(settings):
         raise RuntimeError(f"the floor of group {selection} did not finish")

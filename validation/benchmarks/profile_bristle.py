@@ -41,12 +41,7 @@ def main() -> None:
     settings.show.computationTime = True  # printed by Exudyn at the end of the solve
     settings.timeIntegration.verboseMode = 1
 
-    def before_step(mbs, t):
-        for hook in scene.step_hooks:
-            hook(mbs, t)
-        return True
-
-    scene.mbs.SetPreStepUserFunction(before_step)
+    scene.mbs.SetPreStepUserFunction(scene.run_step_hooks)
     start = time.perf_counter()
     scene.mbs.SolveDynamic(settings)
     print(f"wall {time.perf_counter() - start:.3f} s, {solver_statistics(scene.mbs)}")
