@@ -46,7 +46,12 @@ def choose_exudyn_build() -> None:
 
 
 def requested_build() -> str:
-    """``"fast"`` or ``"checked"``: what this process asked Exudyn for (run records)."""
+    """``"fast"`` or ``"checked"`` for run records: the core this process loaded if it
+    imported Exudyn (a CPU without AVX2 falls back to the checked one), else the one it will
+    ask for (the workers, which solve, decide as this process does)."""
+    exudyn = sys.modules.get("exudyn")
+    if exudyn is not None and hasattr(exudyn, "_compiledModuleName"):
+        return "fast" if exudyn._compiledModuleName == "exudynCPPfast" else "checked"
     return "fast" if getattr(sys, "exudynFast", False) else "checked"
 
 
@@ -69,8 +74,9 @@ class _QuietAnnouncement(importlib.abc.MetaPathFinder):
                         execute(module)
                 finally:
                     lines = captured.getvalue().splitlines(keepends=True)
-                    sys.stdout.write("".join(line for line in lines
-                                             if line.strip() != _ANNOUNCEMENT))
+                    kept = "".join(line for line in lines if line.strip() != _ANNOUNCEMENT)
+                    if kept and sys.stdout is not None:  # None: no console (pythonw)
+                        sys.stdout.write(kept)
 
             spec.loader.exec_module = exec_module
         return spec

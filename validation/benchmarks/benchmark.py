@@ -30,7 +30,8 @@ and on what else runs: compare variants within one run of the harness.
 trees of exubrush (e.g. a commit before a change and after it) in one run: every run is a
 fresh process with that tree first on its path, the trees take turns (old, new, old, new,
 ...) so that a drift of the machine's speed hits all of them alike, and each row is named
-``variant [label]``. The trees must accept the variant's parameter keys.
+``variant [label]``. The trees must accept the variant's parameter keys, and floor variants
+need ``Scene.run_step_hooks`` (0.5.0 on).
 """
 
 from __future__ import annotations
@@ -203,7 +204,7 @@ with PeakMemory() as peak:
     start = time.perf_counter()
     if mode == "floor":
         from floor import floor_run
-        report = floor_run(parameters, workers or 2)
+        report = floor_run(parameters, workers)
         wall = time.perf_counter() - start
     else:
         from exubrush.simulation import simulate
@@ -212,7 +213,8 @@ with PeakMemory() as peak:
         results.save(out)
         report = {}
 report.update(wall=wall, module=exubrush.__file__,
-              peak_memory_mb=peak.self_mb if workers == 1 else peak.children_mb)
+              # no worker seen: the groups were solved in this process
+              peak_memory_mb=peak.children_mb or peak.self_mb)
 print(json.dumps(report))
 """
 
@@ -283,7 +285,7 @@ def write_outputs(rows: list[dict], out: Path, stem: str, machine: str) -> None:
                      f"| {_pct(r['flat_normal_first'])} | {_pct(r['flat_tangential_first'])} "
                      f"| {_pct(r['flat_normal'])} | {_pct(r['flat_tangential'])} "
                      f"| {_pct(r['reversal_peak'])} | {_number(r['tip_mm'], 3)} "
-                     f"| {r['peak_memory_mb']:.0f} |")
+                     f"| {_number(r['peak_memory_mb'], 0)} |")
     (out / f"{stem}.md").write_text("\n".join(lines) + "\n")
 
     fig, axis = figure(1, 1, figsize=(11, 5.5))

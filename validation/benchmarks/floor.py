@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import dataclasses
 import multiprocessing
+import os
 import time
 from concurrent.futures import ProcessPoolExecutor
 
@@ -38,11 +39,12 @@ def floor_group(prepared: PreparedCase, selection: tuple[int, ...]) -> dict:
     return {"wall": wall, **dataclasses.asdict(solver_statistics(scene.mbs))}
 
 
-def floor_run(case: Case, workers: int) -> dict:
-    """The floor of ``case``: every group in ``workers`` processes (as exubrush solves them);
-    summed solver counts and the groups' summed solve time."""
+def floor_run(case: Case, workers: int | None) -> dict:
+    """The floor of ``case``: every group in ``workers`` processes (default: every core, as
+    exubrush's local executor); summed solver counts and the groups' summed solve time."""
     prepared = prepare(case)
     groups = [tuple(group) for group in prepared.groups]
+    workers = min(workers or os.cpu_count() or 1, len(groups))
     if workers == 1:
         parts = [floor_group(prepared, group) for group in groups]
     else:

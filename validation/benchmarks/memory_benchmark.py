@@ -32,8 +32,9 @@ if __name__ == "__main__":
         start = time.perf_counter()
         results = simulate(parameters, progress=False, workers=workers)
         wall = time.perf_counter() - start
+    # no worker seen: the groups were solved in the main process
     print(json.dumps({{"wall_s": wall, "status": results.metadata["status"],
-                      "worker_mb": peak.children_mb, "main_mb": peak.self_mb}}))
+                      "worker_mb": peak.children_mb or peak.self_mb, "main_mb": peak.self_mb}}))
 """
 
 
@@ -56,6 +57,8 @@ def main() -> None:
         if done.returncode != 0:
             raise SystemExit(f"the run with {periods:g} periods failed:\n{done.stderr[-2000:]}")
         report = json.loads(done.stdout.strip().splitlines()[-1])
+        if report["status"] != "completed":
+            raise SystemExit(f"the run with {periods:g} periods ended {report['status']}")
         print(f"| {periods:g} | {report['wall_s']:.1f} | {report['worker_mb']:.1f} "
               f"| {report['main_mb']:.1f} |", flush=True)
 
