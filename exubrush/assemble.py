@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from exubrush.exudyn_build import requested_build
+from exubrush.exudyn_build import build_in_use
 from exubrush.kinematics import handle_history, head_force
 from exubrush.parameters.fields import to_plain
 from exubrush.prepared import PreparedCase
@@ -86,7 +86,7 @@ def assemble_results(prepared: PreparedCase, solutions: Sequence[GroupSolution |
         "parameters": to_plain(case),
         "derived": _derived(prepared, ran, facts),
         "versions": {**code_identity(), "exudyn": package_version("exudyn"),
-                     "exudyn_build": requested_build(), "python": platform.python_version()},
+                     "exudyn_build": build_in_use(), "python": platform.python_version()},
         "solver_statistics": _statistics(ran),
         "sanity": {"peak_normal_force_N": peak, "normal_force_bound_N": bound,
                    "within_bound": peak <= bound},

@@ -45,8 +45,8 @@ def choose_exudyn_build() -> None:
         sys.meta_path.insert(0, _QuietAnnouncement())
 
 
-def requested_build() -> str:
-    """``"fast"`` or ``"checked"`` for run records: the core this process loaded if it
+def build_in_use() -> str:
+    """``"fast"`` or ``"checked"`` for run records: the core this process loaded if it has
     imported Exudyn (a CPU without AVX2 falls back to the checked one), else the one it will
     ask for (the workers, which solve, decide as this process does)."""
     exudyn = sys.modules.get("exudyn")

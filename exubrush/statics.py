@@ -6,6 +6,7 @@ import exudyn as exu
 import exudyn.itemInterface as eii
 import numpy as np
 
+from exubrush.models.assembly import rigid_marker
 from exubrush.models.dfm import add_dfm_bristle
 from exubrush.models.geometry import BristleGeometry
 from exubrush.models.prb import add_prb_bristle
@@ -68,10 +69,8 @@ def pinned_prb_push(
     ground = mbs.AddObject(eii.ObjectGround())
     items = add_prb_bristle(mbs, ground, bristle, material, gamma, stiffness_coefficient)
     tip_point = bristle.point(bristle.length)
-    on_axis = mbs.AddMarker(eii.MarkerBodyRigid(
-        bodyNumber=ground, localHT=exu.HT(rotation=np.asarray(bristle.frame),
-                                          translation=list(tip_point))))
-    tip = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=items.tip_body, localPosition=[0, 0, 0]))
+    on_axis = rigid_marker(mbs, ground, tip_point, bristle.frame)
+    tip = rigid_marker(mbs, items.tip_body, [0.0, 0.0, 0.0])
     mbs.AddObject(eii.ObjectJointGeneric(markerNumbers=[on_axis, tip],
                                          constrainedAxes=[0, 1, 1, 0, 0, 0]))
     axis = np.asarray(bristle.frame)[:, 0]

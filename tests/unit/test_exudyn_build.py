@@ -11,8 +11,8 @@ import pytest
 from exubrush.exudyn_build import CHECKS_VARIABLE, wants_checked_build
 
 REPORT = ("import sys\n{before}\nimport exubrush, exudyn\n"
-          "from exubrush.exudyn_build import requested_build\n"
-          "print(exudyn._compiledModuleName, requested_build())")
+          "from exubrush.exudyn_build import build_in_use\n"
+          "print(exudyn._compiledModuleName, build_in_use())")
 
 
 def _cpu_has_avx2() -> bool:
