@@ -57,10 +57,13 @@ from exubrush.experiment import (
     reversal_zones,
     strokes,
 )
+from exubrush.parameters.fields import ParameterError
 from exubrush.parameters.io import load_case
 from exubrush.plotting import figure
+from exubrush.prepared import prepare
 from exubrush.presets import PRESETS
 from exubrush.results import Results, read_results
+from exubrush.rundir import unusable_directory
 from exubrush.simulation import simulate
 
 FLAT_SPEED = 0.8
@@ -182,7 +185,7 @@ def run_variant(case_name: str, head: str, periods: float, name: str, repeat: in
     overrides = _overrides(head, periods, VARIANTS[name])
     for _ in range(repeat):
         for label, tree in code.items():
-            results, report = _run_in_tree(tree, mode, case_name, overrides, workers)
+            results, report = run_in_tree(tree, mode, case_name, overrides, workers)
             walls[label].append(report["wall"])
             first.setdefault(label, (results, report))
     return [(first[label][0], _record(name if label is None else f"{name} [{label}]",
@@ -195,6 +198,7 @@ def run_variant(case_name: str, head: str, periods: float, name: str, repeat: in
 WORKER = """
 import json, sys, time
 import exubrush
+from exubrush.parameters.fields import ParameterError
 from exubrush.parameters.io import load_case
 mode, case, overrides, workers, out, here = json.loads(sys.argv[1])
 sys.path.insert(0, here)
@@ -214,13 +218,16 @@ with PeakMemory() as peak:
         report = {}
 report.update(wall=wall, module=exubrush.__file__,
               # no worker seen: the groups were solved in this process
-              peak_memory_mb=peak.children_mb or peak.self_mb)
+              peak_memory_mb=peak.children_mb or peak.self_mb, main_memory_mb=peak.self_mb)
 print(json.dumps(report))
 """
 
 
-def _run_in_tree(tree: Path, mode: str, case_name: str, overrides: list[str],
-                 workers: int | None) -> tuple[Results | None, dict]:
+def run_in_tree(tree: Path, mode: str, case_name: str, overrides: list[str],
+                workers: int | None) -> tuple[Results | None, dict]:
+    """One run of ``mode`` ("simulate" or "floor") in a fresh interpreter started in the
+    source tree ``tree``: its results (None for a floor) and its report (``wall`` [s],
+    ``peak_memory_mb`` of a solving process, ``main_memory_mb`` of the main process)."""
     with tempfile.TemporaryDirectory() as out:
         environment = {**os.environ, "PYTHONPATH": str(tree.resolve())}
         arguments = [mode, case_name, overrides, workers, out, str(Path(__file__).parent)]
@@ -352,6 +359,16 @@ def main() -> None:
         for label, tree in code.items():
             if not (tree / "exubrush" / "__init__.py").is_file():
                 parser.error(f"--code {label}={tree}: no exubrush package in that tree")
+    if args.repeat < 1:
+        parser.error(f"--repeat {args.repeat}: give 1 or more runs per variant")
+    for name in args.only or VARIANTS:  # every case is valid before anything runs
+        try:
+            prepare(load_case(args.case, _overrides(args.head, args.periods, VARIANTS[name])))
+        except ParameterError as err:
+            parser.error(f"{name}: {err}")
+    reason = unusable_directory(args.out)
+    if reason:
+        parser.error(f"--out {args.out}: {reason}")
     args.out.mkdir(parents=True, exist_ok=True)
     machine = f"{platform.node()}, {os.cpu_count()} cores, Python {platform.python_version()}"
     reference = reference_results(args.case, args.head, args.periods, args.out)

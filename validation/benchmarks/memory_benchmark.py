@@ -1,41 +1,29 @@
 """Peak memory of the solving processes against the number of slide periods.
 
     python validation/benchmarks/memory_benchmark.py [--case orthogonal] [--periods 1 2 4]
-        [--workers 2] [--set KEY=VALUE ...]
+        [--workers 2] [--set KEY=VALUE ...] [--tree SOURCE_TREE]
 
-Runs the case (default head) once per number of periods, each in a fresh process, and
-prints the largest resident set (VmHWM, peak_memory.py) of a worker process and of the
-main process. A worker solves one bristle group after another and returns each group's
-time series, so its peak should not grow with the periods beyond that one group's output;
-the main process holds the whole head's results, which do.
+Runs the case (default head) once per number of periods, each in a fresh process (the
+benchmark harness's ``run_in_tree``), and prints the largest resident set (VmHWM,
+peak_memory.py) of a worker process and of the main process. A worker solves one bristle
+group after another and returns each group's time series, so its peak should not grow with
+the periods beyond that one group's output; the main process holds the whole head's
+results, which do. ``--tree`` measures another source tree of exubrush (an older commit:
+``git worktree add ../tree-old COMMIT``).
 """
 
 from __future__ import annotations
 
 import argparse
-import json
-import subprocess
-import sys
 from pathlib import Path
 
-HERE = Path(__file__).resolve().parent
+from benchmark import run_in_tree
 
-RUN = """
-import json, sys, time
-sys.path.insert(0, {here!r})
-from peak_memory import PeakMemory
-from exubrush import load_case, simulate
-if __name__ == "__main__":
-    case, overrides, workers = json.loads(sys.argv[1])
-    parameters = load_case(case, overrides)
-    with PeakMemory() as peak:
-        start = time.perf_counter()
-        results = simulate(parameters, progress=False, workers=workers)
-        wall = time.perf_counter() - start
-    # no worker seen: the groups were solved in the main process
-    print(json.dumps({{"wall_s": wall, "status": results.metadata["status"],
-                      "worker_mb": peak.children_mb or peak.self_mb, "main_mb": peak.self_mb}}))
-"""
+from exubrush.parameters.fields import ParameterError
+from exubrush.parameters.io import load_case
+from exubrush.prepared import prepare
+
+TREE = Path(__file__).resolve().parents[2]  # this source tree
 
 
 def main() -> None:
@@ -45,22 +33,26 @@ def main() -> None:
     parser.add_argument("--workers", type=int, default=2)
     parser.add_argument("--set", dest="overrides", action="append", default=[],
                         metavar="KEY=VALUE")
+    parser.add_argument("--tree", type=Path, default=TREE,
+                        help="the exubrush source tree to run (default: this one)")
     args = parser.parse_args()
+    if not (args.tree / "exubrush" / "__init__.py").is_file():
+        parser.error(f"--tree {args.tree}: no exubrush package in that tree")
+    for periods in args.periods:  # every case is valid before anything runs
+        try:
+            prepare(load_case(args.case, [*args.overrides, f"motion.periods={periods:g}"]))
+        except ParameterError as err:
+            parser.error(str(err))
     print("| periods | wall time [s] | peak per worker [MB] | peak of the main process [MB] |")
     print("| --- | --- | --- | --- |")
     for periods in args.periods:
         overrides = [*args.overrides, f"motion.periods={periods:g}"]
-        done = subprocess.run(
-            [sys.executable, "-c", RUN.format(here=str(HERE)),
-             json.dumps([args.case, overrides, args.workers])],
-            capture_output=True, text=True, check=False)
-        if done.returncode != 0:
-            raise SystemExit(f"the run with {periods:g} periods failed:\n{done.stderr[-2000:]}")
-        report = json.loads(done.stdout.strip().splitlines()[-1])
-        if report["status"] != "completed":
-            raise SystemExit(f"the run with {periods:g} periods ended {report['status']}")
-        print(f"| {periods:g} | {report['wall_s']:.1f} | {report['worker_mb']:.1f} "
-              f"| {report['main_mb']:.1f} |", flush=True)
+        results, report = run_in_tree(args.tree, "simulate", args.case, overrides, args.workers)
+        status = results.metadata["status"]
+        if status != "completed":
+            raise SystemExit(f"the run with {periods:g} periods ended {status}")
+        print(f"| {periods:g} | {report['wall']:.1f} | {report['peak_memory_mb']:.1f} "
+              f"| {report['main_memory_mb']:.1f} |", flush=True)
 
 
 if __name__ == "__main__":
