@@ -2,7 +2,7 @@
 
 Contents: a rigid handle whose six coordinates are prescribed by coordinate constraints
 (the drive; its reaction is what the load cells read), the bristles (DFM or PRB) clamped
-to it, a contact connector for each tip that can reach the plane, and sensors for the
+to it, a contact connector for each tip that can reach the surface, and sensors for the
 drive reactions and the bristle nodes.
 """
 
@@ -21,6 +21,7 @@ from exubrush.contact.exudyn_contact import (
     add_tip_contact,
     builtin_friction_blend,
     contact_user_function,
+    surface_marker,
 )
 from exubrush.contact.laws import builtin_contact_parameters
 from exubrush.models.dfm import add_dfm_bristle
@@ -29,6 +30,7 @@ from exubrush.models.prb import add_prb_bristle, stub_graphics
 from exubrush.models.stiffness import buckling_load
 from exubrush.motion import HeadMotion
 from exubrush.prepared import PreparedCase
+from exubrush.surfaces import orientation, tooth_pitch
 
 # the handle is a stiff block whose mass only enters the drive reaction, from which the
 # exact inertia force m·a of the prescribed motion is removed again
@@ -106,10 +108,10 @@ def _add_drive(scene: Scene, handle_node) -> None:
 
 
 def _drawings(prepared: PreparedCase, bristles, gamma: float | None):
-    """Graphics of the surface (a checkerboard at z = 0) and of the handle (a block above
-    the roots, and the PRB stubs of a link factor ``gamma``) for Exudyn's renderer [mm]."""
+    """Graphics of the surface and of the handle (a block above the roots, and the PRB
+    stubs of a link factor ``gamma``) for Exudyn's renderer [mm]."""
     size = 2.0 * (max(HANDLE_SIZE) + prepared.case.motion.amplitude)
-    surface = [graphics.CheckerBoard(point=[0.0, 0.0, 0.0], normal=[0.0, 0.0, 1.0], size=size)]
+    surface = surface_graphics(prepared.case.surface, size)
     handle = [graphics.Brick(centerPoint=[0.0, 0.0, 0.5 * HANDLE_SIZE[2]], size=HANDLE_SIZE,
                              color=[0.6, 0.6, 0.6, 0.5])]
     if gamma is not None:
@@ -117,10 +119,37 @@ def _drawings(prepared: PreparedCase, bristles, gamma: float | None):
     return surface, handle
 
 
-def _add_contact(scene: Scene, prepared: PreparedCase, plane, tip_body,
+def surface_graphics(surface, size: float) -> list:
+    """Exudyn graphics of ``surface`` over a square of side ``size`` [mm], head frame."""
+    turn = orientation(surface)
+    top = np.array([surface.x, surface.y, 0.0])
+    grey = [0.7, 0.7, 0.7, 1.0]
+    if surface.kind == "plane":
+        return [graphics.CheckerBoard(point=[0.0, 0.0, 0.0], normal=[0.0, 0.0, 1.0], size=size)]
+    if surface.kind == "cylinder":
+        centre = top + turn @ [0.0, 0.0, -surface.radius]
+        axis = turn @ [0.0, size, 0.0]
+        return [graphics.Cylinder(pAxis=(centre - 0.5 * axis).tolist(), vAxis=axis.tolist(),
+                                  radius=surface.radius, color=grey, nTiles=48)]
+    if surface.kind == "sphere":
+        return [graphics.Sphere(point=(top + [0.0, 0.0, -surface.radius]).tolist(),
+                                radius=surface.radius, color=grey, nTiles=32)]
+    pitch = tooth_pitch(surface)
+    drawn = [graphics.CheckerBoard(point=[0.0, 0.0, -surface.gap_depth],
+                                   normal=[0.0, 0.0, 1.0], size=size)]
+    for k in range(-int(0.5 * size / pitch) - 1, int(0.5 * size / pitch) + 2):
+        centre = top + turn @ [k * pitch, 0.0, -0.5 * surface.gap_depth]
+        box = turn @ [surface.tooth_width, size, surface.gap_depth]
+        drawn.append(graphics.Brick(centerPoint=centre.tolist(), size=np.abs(box).tolist(),
+                                    color=grey))
+    return drawn
+
+
+def _add_contact(scene: Scene, prepared: PreparedCase, surface_marker_number, tip_body,
                  bristle: BristleGeometry, laws: dict):
-    """The tip's contact with the plane: the paper's law as a user function (one per tip
-    radius, cached in ``laws``), or Exudyn's built-in contact with the nearest parameters."""
+    """The tip's contact with the surface: the paper's law as a user function (one per tip
+    radius, cached in ``laws``), or Exudyn's built-in contact with the nearest parameters
+    (a plane only)."""
     case, window = prepared.case, prepared.friction_window
     if case.contact.backend == "exudyn-builtin":
         parameters = builtin_contact_parameters(
@@ -129,12 +158,13 @@ def _add_contact(scene: Scene, prepared: PreparedCase, plane, tip_body,
         )
         if window is not None:
             parameters["dynamicFriction"] = 0.0  # blended in by a step hook
-        return add_builtin_tip_contact(scene.mbs, plane, tip_body, bristle.tip_radius,
-                                       parameters)
+        return add_builtin_tip_contact(scene.mbs, surface_marker_number, tip_body,
+                                       bristle.tip_radius, parameters)
     if bristle.tip_radius not in laws:
         laws[bristle.tip_radius] = contact_user_function(
-            scene.mbs, case.contact, bristle.tip_radius, window)
-    return add_tip_contact(scene.mbs, plane, tip_body, laws[bristle.tip_radius])
+            scene.mbs, case.contact, bristle.tip_radius, window, case.surface)
+    return add_tip_contact(scene.mbs, surface_marker_number, tip_body,
+                           laws[bristle.tip_radius])
 
 
 def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None,
@@ -169,7 +199,7 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
     scene = Scene(SC, mbs, prepared.motion, prepared.slide_axis, handle_inertia.Mass(),
                   bristles)
     _add_drive(scene, handle["nodeNumber"])
-    plane = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=ground, localPosition=[0, 0, 0]))
+    surface = surface_marker(mbs, ground, case.surface)
     laws = {}
     origin = (0.0, 0.0, prepared.start_height)
     material = case.head.material
@@ -188,8 +218,8 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
             for n in items.nodes
         ])
         if can_reach(bristle, case.motion.interaction_distance):
-            scene.contacts.append(_add_contact(scene, prepared, plane, items.tip_body, bristle,
-                                               laws))
+            scene.contacts.append(_add_contact(scene, prepared, surface, items.tip_body,
+                                               bristle, laws))
     scene.keep_alive.extend(laws.values())
     window = prepared.friction_window
     if case.contact.backend == "exudyn-builtin" and window is not None and scene.contacts:

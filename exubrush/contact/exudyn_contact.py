@@ -1,12 +1,15 @@
-"""Tip-sphere contact with the plane Z = 0 as an Exudyn connector with a user function.
+"""Tip-sphere contact with the surface as an Exudyn connector with a user function.
 
-Each tip gets an ``ObjectConnectorRigidBodySpringDamper`` from a ground marker on the plane
-(frame = head/world frame, normal +Z) to the tip body's node at the sphere centre, in the
-non-intrinsic formulation: Exudyn then hands the user function the centre's position,
-velocity and angular velocity in the plane frame, applies the returned force at the sphere
-centre and the returned torque to the tip body, both with a minus sign (a spring's
-restoring convention, checked in tests/integration/test_contact_connector.py). The law is
-:func:`exubrush.contact.laws.sphere_plane_force`, recorded as an Exudyn symbolic (C++) user
+Each tip gets an ``ObjectConnectorRigidBodySpringDamper`` from a ground marker at the
+surface frame's origin (its top; the frame turned by ``rotationMarker0``) to the tip body's
+node at the sphere centre, in the non-intrinsic formulation: Exudyn then hands the user
+function the centre's position, velocity and angular velocity in the surface frame, applies
+the returned force at the sphere centre and the returned torque to the tip body, both with
+a minus sign (a spring's restoring convention, checked in
+tests/integration/test_contact_connector.py). The law is
+:func:`exubrush.contact.laws.sphere_plane_force` on a plane and
+:func:`exubrush.contact.laws.sphere_surface_force` over the surface's features
+(exubrush.surfaces) on any other surface, recorded as an Exudyn symbolic (C++) user
 function by default (``contact.backend = "paper-symbolic"``), or called as plain Python
 (``"paper-python"``).
 
@@ -17,26 +20,45 @@ against one triangle covering the plane, with the law's nearest parameters
 
 from __future__ import annotations
 
+from types import SimpleNamespace
+
 import exudyn as exu
 import exudyn.itemInterface as eii
 from exudyn.advancedUtilities import CreateSymbolicUserFunction
 
-from exubrush.contact.laws import cubic_step, sphere_plane_force
+from exubrush.contact.laws import cubic_step, sphere_plane_force, sphere_surface_force
 from exubrush.float_math import FLOAT_MATH
-from exubrush.parameters.case import ContactLaw
+from exubrush.parameters.case import ContactLaw, Surface
+from exubrush.surfaces import features, orientation
 
 # half the side of the square of the plane z = 0 that the built-in contact's triangle
 # covers [mm]: far beyond any head and stroke
 BUILTIN_PLANE_HALF_SIZE = 1e4
+
+def _symbolic_if(condition, if_true, if_false):
+    """Exudyn's symbolic IfThenElse, also for plain numbers as branches (it takes only
+    expressions)."""
+    real = exu.symbolic.Real
+    return exu.symbolic.IfThenElse(
+        condition, *(b if isinstance(b, real) else real(float(b)) for b in (if_true, if_false)))
+
+
+SYMBOLIC_MATH = SimpleNamespace(
+    **{name: getattr(exu.symbolic, name) for name in ("sqrt", "abs", "sign", "min", "max",
+                                                      "floor")},
+    IfThenElse=_symbolic_if,
+)
+"""The math back end (exubrush.float_math) that records Exudyn symbolic expressions."""
 
 CONNECTOR_TYPE = "ObjectConnectorRigidBodySpringDamper"
 USER_FUNCTION_NAME = "springForceTorqueUserFunction"
 
 
 def contact_user_function(
-    mbs, law: ContactLaw, radius: float, friction_window=None
+    mbs, law: ContactLaw, radius: float, friction_window=None, surface: Surface | None = None
 ):
-    """Return an Exudyn spring-force-torque user function for one sphere radius.
+    """Return an Exudyn spring-force-torque user function for one sphere radius and
+    ``surface`` (default: the plane).
 
     ``law.backend`` chooses how: ``"paper-symbolic"`` records the law into a C++ expression
     tree (keep the returned object alive as long as ``mbs`` runs); ``"paper-python"``
@@ -52,15 +74,20 @@ def contact_user_function(
     if backend not in ("paper-symbolic", "paper-python"):
         raise ValueError(f"contact.backend {backend!r} has no user function; use "
                          "paper-symbolic or paper-python")
-    math_backend = exu.symbolic if backend == "paper-symbolic" else FLOAT_MATH
+    math_backend = SYMBOLIC_MATH if backend == "paper-symbolic" else FLOAT_MATH
 
     def contact_force(mbs, t, itemNumber, displacement, rotation, velocity, angularVelocity,
                       stiffness, damping, rotJ0, rotJ1, offset):
         scale = 1.0
         if friction_window is not None:
             scale = cubic_step(t, friction_window[0], 0.0, friction_window[1], 1.0, math_backend)
-        load = sphere_plane_force(law, radius, displacement, velocity, angularVelocity,
-                                  math_backend, scale)
+        if surface is None or surface.kind == "plane":
+            load = sphere_plane_force(law, radius, displacement, velocity, angularVelocity,
+                                      math_backend, scale)
+        else:
+            load = sphere_surface_force(
+                law, radius, features(surface, displacement, radius, math_backend),
+                velocity, angularVelocity, math_backend, scale)
         return [-component for component in load]
 
     if backend == "paper-python":
@@ -70,12 +97,22 @@ def contact_user_function(
     )
 
 
-def add_tip_contact(mbs, plane_marker, tip_body, user_function):
-    """Connect the tip body's node (sphere centre) to the plane through ``user_function``."""
+def surface_marker(mbs, ground, surface: Surface | None):
+    """A marker on ``ground`` in the surface frame (the plane's: the head frame); a
+    connector from it sees the tip in that frame."""
+    if surface is None or (surface.x, surface.y, surface.yaw) == (0.0, 0.0, 0.0):
+        return mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=ground, localPosition=[0, 0, 0]))
+    frame = exu.HT(rotation=orientation(surface).tolist(), translation=[surface.x, surface.y, 0.0])
+    return mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=ground, localHT=frame))
+
+
+def add_tip_contact(mbs, surface_marker_number, tip_body, user_function):
+    """Connect the tip body's node (sphere centre) to the surface through ``user_function``;
+    the connector's frame is that of the surface marker."""
     tip_marker = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=tip_body, localPosition=[0, 0, 0]))
     return mbs.AddObject(
         eii.ObjectConnectorRigidBodySpringDamper(
-            markerNumbers=[plane_marker, tip_marker],
+            markerNumbers=[surface_marker_number, tip_marker],
             useIntrinsicFormulation=False,
             springForceTorqueUserFunction=user_function,
             visualization=eii.VObjectConnectorRigidBodySpringDamper(show=False),

@@ -24,6 +24,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from exubrush.float_math import FLOAT_MATH
+from exubrush.surfaces import Choice
 
 if TYPE_CHECKING:  # the laws read the parameters' attributes only: no import at run time
     from exubrush.parameters.case import ContactLaw
@@ -97,6 +98,120 @@ def sphere_plane_force(
     force_tx = scale * slip_x
     force_ty = scale * slip_y
     return [force_tx, force_ty, force_n, radius * force_ty, -radius * force_tx, 0.0]
+
+
+def sphere_feature_force(
+    law: ContactLaw, radius: float, normal, distance, velocity, omega, m=FLOAT_MATH,
+    friction_scale=1.0,
+):
+    """Force and moment of one convex surface feature on a sphere (exubrush.surfaces).
+
+    The sphere (radius r [mm]) penetrates the feature by δ = r − d along the feature's
+    outward unit normal n at the closest point, d the signed distance of its centre
+    [mm]. The material point of the sphere at the contact point −r n from the centre moves
+    with v_c = v + ω × (−r n); its normal part v·n gives the penetration rate −v·n, its
+    tangential part v_c − (v_c·n) n the slip. The law is :func:`sphere_plane_force`'s
+    along n: F = F_n n + F_t, moment (−r n) × F_t about the centre. The surface is at rest.
+
+    A normal given as plain numbers (a flat face) drops the terms it multiplies by zero, so
+    that Exudyn's expression tree of a face costs about as much as the plane's.
+
+    Returns
+    -------
+    list of 6
+        Force on the sphere [N] and moment about its centre [N·mm], in the frame of
+        ``normal``, ``velocity`` and ``omega``.
+    """
+    nx, ny, nz = normal
+    # v_c = v + ω × (−r n)
+    contact_velocity = (
+        _sum(velocity[0], _product(-radius, _difference(_product(omega[1], nz),
+                                                        _product(omega[2], ny)))),
+        _sum(velocity[1], _product(-radius, _difference(_product(omega[2], nx),
+                                                        _product(omega[0], nz)))),
+        _sum(velocity[2], _product(-radius, _difference(_product(omega[0], ny),
+                                                        _product(omega[1], nx)))),
+    )
+    # (ω × n)·n = 0: the contact point's normal speed is the centre's
+    normal_speed = _sum(*(_product(velocity[i], normal[i]) for i in range(3)))
+    slip = _tangential(contact_velocity, normal, normal_speed)
+    force_n = normal_force(law, radius - distance, -normal_speed, m)
+    slip_square = _sum(*(_product(c, c) for c in slip))
+    slip_speed = m.sqrt(slip_square + 1e-12)
+    scale = -friction_scale * friction_coefficient(law, slip_speed, m) * force_n / slip_speed
+    force = [_sum(_product(force_n, normal[i]), _product(scale, slip[i])) for i in range(3)]
+    # (−r n) × F_t, F_t = scale · slip
+    arm = -radius * scale
+    return force + [
+        _product(arm, _difference(_product(ny, slip[2]), _product(nz, slip[1]))),
+        _product(arm, _difference(_product(nz, slip[0]), _product(nx, slip[2]))),
+        _product(arm, _difference(_product(nx, slip[1]), _product(ny, slip[0]))),
+    ]
+
+
+def sphere_surface_force(
+    law: ContactLaw, radius: float, surface_features, velocity, omega, m=FLOAT_MATH,
+    friction_scale=1.0,
+):
+    """The sum of :func:`sphere_feature_force` over ``surface_features``
+    (exubrush.surfaces.features): every feature the sphere penetrates acts on it. A
+    feature's load is only evaluated where the sphere reaches it (d < r), a Choice's only
+    in the region the point is in (Exudyn's IfThenElse evaluates one branch)."""
+
+    def load(feature):
+        if isinstance(feature, Choice):
+            yes, no = load(feature.if_true), load(feature.if_false)
+            return [m.IfThenElse(feature.condition, a, b) for a, b in zip(yes, no, strict=True)]
+        pushed = sphere_feature_force(law, radius, feature.normal, feature.distance, velocity,
+                                      omega, m, friction_scale)
+        touching = feature.distance < radius
+        return [m.IfThenElse(touching, component, 0.0) for component in pushed]
+
+    total = None
+    for feature in surface_features:
+        part = load(feature)
+        total = part if total is None else [a + b for a, b in zip(total, part, strict=True)]
+    return total
+
+
+def _is_number(value) -> bool:
+    return isinstance(value, int | float)
+
+
+def _product(a, b):
+    """a·b, exact for a plain factor 0 (0.0), 1 (the other) or −1 (its negative)."""
+    for plain, other in ((a, b), (b, a)):
+        if _is_number(plain):
+            if plain == 0.0:
+                return 0.0
+            if plain == 1.0:
+                return other
+            if plain == -1.0:
+                return -other
+    return a * b
+
+
+def _sum(*terms):
+    """The sum of the terms that are not a plain 0."""
+    kept = [t for t in terms if not (_is_number(t) and t == 0.0)]
+    if not kept:
+        return 0.0
+    total = kept[0]
+    for term in kept[1:]:
+        total = total + term
+    return total
+
+
+def _difference(a, b):
+    return _sum(a, _product(-1.0, b))
+
+
+def _tangential(vector, normal, normal_part):
+    """vector − normal_part · normal; a component along a plain unit axis is exactly 0."""
+    axis = [i for i, n in enumerate(normal) if _is_number(n) and abs(n) == 1.0]
+    if axis and all(_is_number(n) for n in normal):
+        return tuple(0.0 if i == axis[0] else vector[i] for i in range(3))
+    return tuple(_difference(vector[i], _product(normal_part, normal[i])) for i in range(3))
 
 
 def builtin_contact_parameters(law: ContactLaw, reference_force: float) -> dict:

@@ -1,7 +1,8 @@
 """The parameters of a brushing case: head, contact, model, motion, solver, output.
 
 Frames. The head frame has X along the head's long axis, Y across it and Z along the
-surface normal, pointing from the surface to the head. The surface is the plane Z = 0.
+surface normal, pointing from the surface to the head.
+The surface's highest point lies at Z = 0 (see :class:`Surface`).
 A bristle's own frame has x from root to tip, y along the head's long axis (the section
 width) and z = x × y (the section height, across the head).
 
@@ -151,6 +152,49 @@ class ContactLaw(Parameters):
                 f"static_velocity ({self.static_velocity:g} mm/s) must be below "
                 f"dynamic_velocity ({self.dynamic_velocity:g} mm/s)"
             )
+
+
+SURFACE_KINDS = ("plane", "cylinder", "sphere", "tooth-row")
+
+
+@dataclass(frozen=True)
+class Surface(Parameters):
+    """The rigid surface the tips brush (exubrush.surfaces).
+
+    Each kind is defined in its own frame, whose origin is the surface's highest point (top)
+    and whose z is the head frame's Z: ``plane`` is z = 0; ``cylinder`` has its axis along
+    y at depth ``radius`` (a tooth crown); ``sphere`` its centre at depth ``radius``;
+    ``tooth-row`` is a row of flat-topped teeth of width ``tooth_width`` along x, separated
+    by interdental gaps ``gap_width`` wide and ``gap_depth`` deep, the tooth's top edges
+    rounded with ``edge_radius``, the profile extruded along y. ``x``, ``y`` and ``yaw``
+    place that frame in the head frame (the head's position at the slide's centre); the
+    top stays at Z = 0, so ``motion.interaction_distance`` is measured to it.
+    """
+
+    kind: str = param("plane", "surface shape", "text", choices=SURFACE_KINDS)
+    radius: float = param(4.0, "cylinder, sphere: radius", "mm", above=0.0)
+    tooth_width: float = param(7.0, "tooth-row: width of a tooth's crown along the row", "mm",
+                               above=0.0)
+    gap_width: float = param(1.0, "tooth-row: width of an interdental gap", "mm", above=0.0)
+    gap_depth: float = param(2.0, "tooth-row: depth of a gap below the tooth tops", "mm",
+                             above=0.0)
+    edge_radius: float = param(0.5, "tooth-row: radius of the rounded top edges of a tooth",
+                               "mm", minimum=0.0)
+    x: float = param(0.0, "position of the surface's top along the head's long axis", "mm")
+    y: float = param(0.0, "position of the surface's top across the head", "mm")
+    yaw: float = param(0.0, "rotation of the surface about Z (0: its x along the head's "
+                            "long axis)", "rad", "deg", minimum=-2 * math.pi,
+                       below=2 * math.pi)
+
+    def check(self) -> None:
+        """A tooth's rounded edges fit in its crown and its gap."""
+        if self.kind == "tooth-row":
+            if not self.edge_radius < 0.5 * self.tooth_width:
+                raise ValueError(f"edge_radius ({self.edge_radius:g} mm) must be below half "
+                                 f"the tooth_width ({self.tooth_width:g} mm)")
+            if not self.edge_radius <= self.gap_depth:
+                raise ValueError(f"edge_radius ({self.edge_radius:g} mm) must not exceed "
+                                 f"gap_depth ({self.gap_depth:g} mm)")
 
 
 @dataclass(frozen=True)
@@ -327,6 +371,7 @@ class Case(Parameters):
     name: str = param("orthogonal", "case name", "text")
     head: Head = field(default_factory=Head)
     contact: ContactLaw = field(default_factory=ContactLaw)
+    surface: Surface = field(default_factory=Surface)
     model: Model = field(default_factory=Model)
     motion: Motion = field(default_factory=Motion)
     solver: Solver = field(default_factory=Solver)
@@ -367,6 +412,11 @@ class Case(Parameters):
                 f"solver.threads = {self.solver.threads} needs contact.backend "
                 f"'exudyn-builtin': with the {self.contact.backend} law Exudyn's threads broke "
                 "Newton or hung; use solver.threads = 1 or the built-in contact"
+            )
+        if self.contact.backend == "exudyn-builtin" and self.surface.kind != "plane":
+            raise ValueError(
+                f"contact.backend 'exudyn-builtin' brushes a plane only; surface.kind "
+                f"'{self.surface.kind}' needs contact.backend 'paper-symbolic' (or 'paper-python')"
             )
         blended = self.motion.approach_friction == "off" or (
             prb and self.motion.approach_friction == "auto")

@@ -12,9 +12,15 @@ from exubrush.contact.exudyn_contact import (
     add_tip_contact,
     builtin_friction_blend,
     contact_user_function,
+    surface_marker,
 )
-from exubrush.contact.laws import builtin_contact_parameters, sphere_plane_force
-from exubrush.parameters.case import ContactLaw
+from exubrush.contact.laws import (
+    builtin_contact_parameters,
+    sphere_plane_force,
+    sphere_surface_force,
+)
+from exubrush.parameters.case import ContactLaw, Surface
+from exubrush.surfaces import features, orientation, to_surface_frame
 
 LAW = ContactLaw()
 RADIUS = 0.4
@@ -148,3 +154,48 @@ def test_builtin_friction_blend_raises_the_coefficient_over_the_window():
         seen.append(mbs.GetObjectParameter(contact, "dynamicFriction"))
     assert seen[0] == 0.0 and 0.0 < seen[1] < 0.76
     assert seen[2] == pytest.approx(0.76) and seen[3] == seen[2]
+
+
+PLACED = [  # (surface, centre of a sphere touching it [mm], head frame)
+    (Surface(kind="cylinder", radius=4.0, x=0.5, y=-1.0, yaw=np.radians(30.0)),
+     [0.5 + 1.5 * np.cos(np.radians(30.0)), -1.0 + 1.5 * np.sin(np.radians(30.0)),
+      np.sqrt(4.37**2 - 1.5**2) - 4.0]),
+    (Surface(kind="sphere", radius=3.0, x=-0.2), [0.8, 0.9, np.sqrt(3.38**2 - 1.81) - 3.0]),
+    # on the rounding of a tooth's edge, and in a gap narrower than the sphere (two walls)
+    (Surface(kind="tooth-row", yaw=np.radians(90.0)), [0.1, 3.4, -0.15]),
+    (Surface(kind="tooth-row", gap_width=0.7, yaw=np.radians(-45.0)),
+     [3.82 * np.sqrt(0.5), -3.82 * np.sqrt(0.5), -1.0]),
+]
+
+
+def _applied_load(surface, backend, centre, velocity, omega):
+    """Force and moment [N, N·mm] that the contact applies to a free sphere of mass 1 t and
+    inertia 1 t·mm², head frame, read as its accelerations after one 1 ns step."""
+    SC, mbs, body, _ = _sphere_above_plane(list(centre), list(velocity), list(omega),
+                                           RigidBodyInertia(1.0, np.eye(3)))
+    ground = mbs.AddObject(eii.ObjectGround())
+    function = contact_user_function(mbs, LAW.replace(backend=backend), RADIUS,
+                                     surface=surface)
+    add_tip_contact(mbs, surface_marker(mbs, ground, surface), body["bodyNumber"], function)
+    _solve(mbs, end_time=1e-9, steps=1)
+    node = body["nodeNumber"]
+    return np.concatenate([
+        mbs.GetNodeOutput(node, exu.OutputVariableType.Acceleration),
+        mbs.GetNodeOutput(node, exu.OutputVariableType.AngularAcceleration),
+    ])
+
+
+@pytest.mark.parametrize("backend", ["paper-symbolic", "paper-python"])
+@pytest.mark.parametrize("placed", PLACED, ids=["cylinder", "sphere", "tooth-edge", "narrow-gap"])
+def test_placed_surface_pushes_as_the_law_in_its_frame(placed, backend):
+    surface, centre = placed
+    velocity, omega = np.array([1.0, -2.0, -0.3]), np.array([0.2, -0.1, 0.4])
+    turn = orientation(surface)
+    local = to_surface_frame(surface, centre)
+    law = sphere_surface_force(LAW, RADIUS, features(surface, local, RADIUS),
+                               (turn.T @ velocity).tolist(), (turn.T @ omega).tolist())
+    expected = np.concatenate([turn @ law[:3], turn @ law[3:]])
+    assert np.linalg.norm(expected[:3]) > 0.05  # the sphere is pressed in
+    # 1 ns of motion at these speeds changes the load by far less than 1e-6 of it
+    np.testing.assert_allclose(_applied_load(surface, backend, centre, velocity, omega),
+                               expected, rtol=1e-6, atol=1e-9)

@@ -9,9 +9,12 @@ from exubrush.contact.laws import (
     builtin_contact_parameters,
     friction_coefficient,
     normal_force,
+    sphere_feature_force,
     sphere_plane_force,
+    sphere_surface_force,
 )
 from exubrush.parameters.case import ContactLaw
+from exubrush.surfaces import Choice, Feature
 
 LAW = ContactLaw()  # paper table 2
 
@@ -135,3 +138,49 @@ def test_builtin_contact_without_friction_keeps_a_valid_regularisation():
                                         reference_force=0.05)
     assert fitted["dynamicFriction"] == 0.0
     assert fitted["frictionProportionalZone"] > 0.0
+
+
+def _rotation(axis, angle):
+    """Rotation matrix about a unit axis (Rodrigues)."""
+    axis = np.asarray(axis, dtype=float) / np.linalg.norm(axis)
+    cross = np.array([[0, -axis[2], axis[1]], [axis[2], 0, -axis[0]], [-axis[1], axis[0], 0]])
+    return np.eye(3) + math.sin(angle) * cross + (1 - math.cos(angle)) * cross @ cross
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_feature_law_is_the_plane_law_turned_to_the_normal(seed):
+    # a face with normal n = R e_z acts on a turned state as the plane acts on the state
+    # itself, turned: F(R p, R v, R ω; n) = R F_plane(p, v, ω)
+    rng = np.random.default_rng(seed)
+    turn = _rotation(rng.normal(size=3), rng.uniform(0.1, 3.0))
+    depth = rng.uniform(0.0, 0.05)
+    velocity, omega = rng.normal(scale=2.0, size=3), rng.normal(scale=2.0, size=3)
+    plane = np.array(sphere_plane_force(LAW, 0.4, [0.0, 0.0, 0.4 - depth], velocity.tolist(),
+                                        omega.tolist()))
+    normal = tuple(float(c) for c in turn[:, 2])
+    turned = np.array(sphere_feature_force(LAW, 0.4, normal, 0.4 - depth,
+                                           (turn @ velocity).tolist(), (turn @ omega).tolist()))
+    np.testing.assert_allclose(turned[:3], turn @ plane[:3], rtol=1e-10, atol=1e-14)
+    np.testing.assert_allclose(turned[3:], turn @ plane[3:], rtol=1e-10, atol=1e-14)
+
+
+def test_feature_law_along_z_is_the_plane_law():
+    state = ([0.0, 0.0, 0.37], [1.0, -0.5, -2.0], [0.3, 0.1, 0.2])
+    plane = sphere_plane_force(LAW, 0.4, *state)
+    face = sphere_feature_force(LAW, 0.4, (0.0, 0.0, 1.0), 0.37, state[1], state[2])
+    np.testing.assert_allclose(face, plane, rtol=1e-15, atol=1e-17)
+
+
+def test_surface_law_sums_the_touched_features_only():
+    velocity, omega = [0.0, 1.0, -0.5], [0.0, 0.0, 0.0]
+    floor = Feature((0.0, 0.0, 1.0), 0.38)
+    wall = Feature((1.0, 0.0, 0.0), 0.39)
+    away = Feature((-1.0, 0.0, 0.0), 0.41)  # 0.01 mm beyond the sphere: no force
+    both = sphere_surface_force(LAW, 0.4, [floor, wall, away], velocity, omega)
+    expected = (np.array(sphere_feature_force(LAW, 0.4, floor.normal, 0.38, velocity, omega))
+                + sphere_feature_force(LAW, 0.4, wall.normal, 0.39, velocity, omega))
+    np.testing.assert_allclose(both, expected, rtol=1e-15)
+    assert both[0] > 0.0 and both[2] > 0.0  # pushed away from the wall and up from the floor
+    chosen = sphere_surface_force(LAW, 0.4, [Choice(False, away, wall)], velocity, omega)
+    np.testing.assert_allclose(
+        chosen, sphere_feature_force(LAW, 0.4, wall.normal, 0.39, velocity, omega), rtol=1e-15)
