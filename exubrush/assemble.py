@@ -65,6 +65,8 @@ def assemble_results(prepared: PreparedCase, solutions: Sequence[GroupSolution |
     nodes_per_bristle = case.model.segments if case.model.kind == "dfm" else 1
     nodes = (np.concatenate([s.nodes[:n] for s in solutions], axis=1) if n
              else np.zeros((0, len(prepared.bristles), nodes_per_bristle, 3)))
+    tip_force = (np.concatenate([s.tip_force[:n] for s in solutions], axis=1) if n
+                 else np.zeros((0, len(prepared.bristles), 3)))
     completed = (not facts.interrupted and len(ran) == len(solutions)
                  and all(s.completed for s in ran))
     status = "completed" if completed else "interrupted" if facts.interrupted else "failed"
@@ -107,6 +109,8 @@ def assemble_results(prepared: PreparedCase, solutions: Sequence[GroupSolution |
         shape_time=t[rows],
         shape_nodes=shape_nodes,
         shape_coordinates=shape_coordinates,
+        tip_position=nodes[:, :, -1, :],
+        tip_force=tip_force,
         metadata=metadata,
     )
 

@@ -6,10 +6,13 @@ and PNG files are written on any machine, with or without a display.
 
 from __future__ import annotations
 
+import numpy as np
 from matplotlib.figure import Figure
 
+from exubrush.cleaning import footprint, gap_depth_history
 from exubrush.files import atomic_file
-from exubrush.metrics import friction_coefficient, travelled_distance
+from exubrush.metrics import NO_CONTACT_FORCE, friction_coefficient, travelled_distance
+from exubrush.models.geometry import head_bristles
 
 
 def figure(rows: int, columns: int = 1, **options):
@@ -118,3 +121,47 @@ def _save(fig, directory, name) -> str:
     with atomic_file(directory / name, "wb") as handle:
         fig.savefig(handle, format="png", dpi=110)
     return name
+
+
+def plot_cleaning(results, summary: dict, target) -> None:
+    """Footprint of contact on the surface, tips in contact (and, on a tooth row, the
+    deepest tip in a gap) against time, and each bristle's force share; PNG to ``target``."""
+    case = results.case()
+    surface = case.surface
+    radius = [b.tip_radius for b in head_bristles(case.head)]
+    teeth = surface.kind == "tooth-row"
+    fig, axes = figure(2, 2, figsize=(11, 8), squeeze=False)
+    counts, x_edges, y_edges = footprint(surface, results.time, results.tip_position,
+                                         results.tip_force, radius, cell=0.25)
+    image = axes[0][0].pcolormesh(x_edges, y_edges, counts.T, cmap="viridis")
+    fig.colorbar(image, ax=axes[0][0], label="contact time per 0.25 mm cell [tip-s]")
+    axes[0][0].set_aspect("equal")
+    axes[0][0].set_xlabel("surface x [mm]")
+    axes[0][0].set_ylabel("surface y [mm]")
+    axes[0][0].set_title("footprint of the contact points", fontsize=9)
+    touching = (np.linalg.norm(results.tip_force, axis=2) > NO_CONTACT_FORCE).sum(axis=1)
+    axes[0][1].plot(results.time, touching, lw=0.8)
+    axes[0][1].set_ylabel("tips in contact")
+    axes[0][1].set_xlabel("time [s]")
+    if teeth:
+        depth_axis = axes[1][0]
+        depth_axis.plot(results.time, gap_depth_history(surface, results.tip_position, radius),
+                        lw=0.8, color="tab:red")
+        depth_axis.set_ylabel("deepest tip below the tooth tops [mm]")
+        depth_axis.set_xlabel("time [s]")
+        depth_axis.set_title("interdental penetration", fontsize=9)
+    else:
+        axes[1][0].axis("off")
+    strokes = [s for s in summary["strokes"] if s["whole"]] or summary["strokes"]
+    if strokes:
+        share = np.mean([s["force_share"] for s in strokes], axis=0)
+        axes[1][1].bar(np.arange(len(share)), 100.0 * share, color="tab:purple")
+    axes[1][1].set_xlabel("bristle")
+    axes[1][1].set_ylabel("share of the normal force [%]")
+    axes[1][1].set_title("force share, mean over the whole strokes", fontsize=9)
+    for axis in (axes[0][1], axes[1][0], axes[1][1]):
+        axis.grid(True, alpha=0.3)
+    fig.suptitle(f"exubrush {results.metadata.get('case', '')}: what the brush cleans on the "
+                 f"{surface.kind} (simulation)", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(target, format="png", dpi=110)

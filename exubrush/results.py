@@ -15,11 +15,15 @@ from pathlib import Path
 
 import numpy as np
 
+from exubrush.cleaning import cleaning_summary
 from exubrush.files import atomic_file, write_csv
 from exubrush.metrics import friction_coefficient, travelled_distance
+from exubrush.models.geometry import head_bristles
 from exubrush.parameters.case import Case
 from exubrush.parameters.fields import ParameterError, build
 
+RESULT_FILES = ("forces.csv", "shapes.npz", "forces.png", "tips.npz", "summary.json",
+                "cleaning.png")
 CSV_COLUMNS = (
     ("time", "s"),
     ("slider_position", "mm"),
@@ -41,6 +45,10 @@ class Results:
     (``output.solution_file = true``), holds rows (time [s], the head's ODE2 coordinates [mm, rad
     or Euler parameters]) at the shape interval, for Exudyn's SolutionViewer
     (exubrush.viewer).
+
+    ``tip_position`` [mm] and ``tip_force`` [N], each (n_t, n_bristles, 3) on ``time``, are
+    every tip-sphere centre and the surface's contact force on it, head frame fixed to the
+    surface: what the cleaning metrics (exubrush.cleaning) are computed from.
     """
 
     time: np.ndarray
@@ -51,6 +59,8 @@ class Results:
     shape_time: np.ndarray
     shape_nodes: np.ndarray
     shape_coordinates: np.ndarray | None = None
+    tip_position: np.ndarray | None = None
+    tip_force: np.ndarray | None = None
     metadata: dict = field(default_factory=dict)
 
     @property
@@ -76,8 +86,19 @@ class Results:
         }
         return {f"{name} [{unit}]": values[name] for name, unit in CSV_COLUMNS}
 
+    def cleaning(self) -> dict | None:
+        """The cleaning metrics of the run (exubrush.cleaning.cleaning_summary), None
+        without tip data."""
+        if self.tip_position is None or self.tip_force is None or len(self.time) == 0:
+            return None
+        case = self.case()
+        radius = [b.tip_radius for b in head_bristles(case.head)]
+        return cleaning_summary(case.surface, self.time, self.slider_position,
+                                self.tip_position, self.tip_force, radius)
+
     def save(self, directory: str | Path) -> Path:
-        """Write forces.csv, run.json, shapes.npz and forces.png into ``directory``.
+        """Write forces.csv, run.json, shapes.npz, forces.png and, with tip data, tips.npz,
+        summary.json (cleaning metrics) and cleaning.png into ``directory``.
 
         Each file is written to a temporary file first and renamed, so a file on disk is
         either complete or absent. Results without any time series (a run interrupted
@@ -89,7 +110,7 @@ class Results:
         directory.mkdir(parents=True, exist_ok=True)
         (directory / "run.json").unlink(missing_ok=True)  # no status while files change
         if len(self.time) == 0:
-            for name in ("forces.csv", "shapes.npz", "forces.png"):
+            for name in RESULT_FILES:
                 (directory / name).unlink(missing_ok=True)
             self._save_metadata(directory)
             return directory
@@ -99,10 +120,22 @@ class Results:
             extra = {} if self.shape_coordinates is None else {
                 "coordinates": self.shape_coordinates}
             np.savez_compressed(handle, time=self.shape_time, nodes=self.shape_nodes, **extra)
-        from exubrush.plotting import plot_forces  # matplotlib only when a plot is drawn
+        from exubrush.plotting import plot_cleaning, plot_forces  # matplotlib when drawn
 
         with atomic_file(directory / "forces.png", "wb") as handle:
             plot_forces(self, handle)
+        summary = self.cleaning()
+        for name in ("tips.npz", "summary.json", "cleaning.png"):
+            (directory / name).unlink(missing_ok=True)
+        if summary is not None:
+            with atomic_file(directory / "tips.npz", "wb") as handle:
+                np.savez_compressed(handle, time=self.time, position=self.tip_position,
+                                    force=self.tip_force)
+            with atomic_file(directory / "summary.json", "w") as handle:
+                json.dump({"data_origin": self.metadata.get("data_origin", ""),
+                           "cleaning": summary}, handle, indent=2)
+            with atomic_file(directory / "cleaning.png", "wb") as handle:
+                plot_cleaning(self, summary, handle)
         self._save_metadata(directory)
         return directory
 
@@ -169,8 +202,14 @@ def read_results(directory: str | Path) -> Results:
     else:
         shape_time, shape_nodes = np.zeros(0), np.zeros((0, 0, 0, 3))
         coordinates = None
+    tips_path = directory / "tips.npz"
+    tip_position = tip_force = None
+    if tips_path.is_file():
+        with np.load(tips_path) as tips:
+            tip_position, tip_force = tips["position"], tips["force"]
     return Results(**series, shape_time=shape_time, shape_nodes=shape_nodes,
-                   shape_coordinates=coordinates, metadata=metadata)
+                   shape_coordinates=coordinates, tip_position=tip_position,
+                   tip_force=tip_force, metadata=metadata)
 
 
 _SERIES = ("time", "slider_position", "normal_force", "tangential_force", "head_height")

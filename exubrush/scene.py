@@ -37,6 +37,7 @@ from exubrush.surfaces import orientation, tooth_pitch
 # (exubrush.kinematics.head_force)
 HANDLE_SIZE = (20.0, 8.0, 3.0)  # mm
 HANDLE_DENSITY = 1.2e-9  # t/mm³ (acrylic-like)
+BUILTIN_FORCE_SIGN = 1.0
 
 
 @dataclass
@@ -52,6 +53,8 @@ class Scene:
     drive_sensors: list = field(default_factory=list)
     node_sensors: list = field(default_factory=list)
     contacts: list = field(default_factory=list)
+    # (index of the bristle in the scene, sensor of its contact's force) per contact
+    contact_sensors: list = field(default_factory=list)
     keep_alive: list = field(default_factory=list)
     # callables (mbs, t) that the solve must call before every step
     step_hooks: list = field(default_factory=list)
@@ -167,6 +170,24 @@ def _add_contact(scene: Scene, prepared: PreparedCase, surface_marker_number, ti
                            laws[bristle.tip_radius])
 
 
+def _contact_force_output(case):
+    """The contact's force output: the user-function connector's ForceLocal (surface frame,
+    minus the force on the tip) or the built-in contact's Force (on the tip, head frame)."""
+    if case.contact.backend == "exudyn-builtin":
+        return exu.OutputVariableType.Force
+    return exu.OutputVariableType.ForceLocal
+
+
+def force_on_tip(case, values: np.ndarray) -> np.ndarray:
+    """The contact force on a tip [N], head frame, from its contact sensor's values (n, 3):
+    minus the user-function connector's ForceLocal turned out of the surface frame, or the
+    built-in contact's Force as it is (its sign checked in
+    tests/integration/test_tip_forces.py)."""
+    if case.contact.backend == "exudyn-builtin":
+        return BUILTIN_FORCE_SIGN * values
+    return -values @ orientation(case.surface).T
+
+
 def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None,
                 drawn: bool = False) -> Scene:
     """Assemble the bristles ``selection`` of ``prepared`` into a ready-to-solve system.
@@ -203,7 +224,7 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
     laws = {}
     origin = (0.0, 0.0, prepared.start_height)
     material = case.head.material
-    for bristle in bristles:
+    for index, bristle in enumerate(bristles):
         if case.model.kind == "dfm":
             items = add_dfm_bristle(mbs, handle["bodyNumber"], bristle, material,
                                     case.model.segments, origin, drawn, case.model.rotation)
@@ -218,8 +239,11 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
             for n in items.nodes
         ])
         if can_reach(bristle, case.motion.interaction_distance):
-            scene.contacts.append(_add_contact(scene, prepared, surface, items.tip_body,
-                                               bristle, laws))
+            contact = _add_contact(scene, prepared, surface, items.tip_body, bristle, laws)
+            scene.contacts.append(contact)
+            scene.contact_sensors.append((index, mbs.AddSensor(eii.SensorObject(
+                objectNumber=contact, storeInternal=True, writeToFile=False,
+                outputVariableType=_contact_force_output(case)))))
     scene.keep_alive.extend(laws.values())
     window = prepared.friction_window
     if case.contact.backend == "exudyn-builtin" and window is not None and scene.contacts:

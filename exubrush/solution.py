@@ -42,6 +42,9 @@ class GroupSolution:
         Drive reaction: the force the handle's coordinates exert on the drive [N].
     nodes : ndarray (n, bristles, nodes, 3)
         Bristle node positions, head frame fixed to the surface [mm].
+    tip_force : ndarray (n, bristles, 3)
+        Contact force of the surface on each tip, head frame [N] (zero for a tip without a
+        contact element).
     coordinates : ndarray (m, 1 + coordinates) or None
         Rows (time [s], ODE2 coordinates) at ``output.shape_interval``, if the case keeps
         them (``output.solution_file``).
@@ -62,6 +65,7 @@ class GroupSolution:
     time: np.ndarray
     reaction: np.ndarray
     nodes: np.ndarray
+    tip_force: np.ndarray
     coordinates: np.ndarray | None
     statistics: SolverStatistics
     completed: bool
@@ -70,7 +74,7 @@ class GroupSolution:
     contacts: int
     handle_mass: float
 
-    ARRAYS = ("time", "reaction", "nodes", "coordinates")
+    ARRAYS = ("time", "reaction", "nodes", "tip_force", "coordinates")
 
     @property
     def interrupted(self) -> bool:
@@ -91,8 +95,9 @@ class GroupSolution:
     def not_solved(cls, message: str) -> GroupSolution:
         """A group that produced nothing (e.g. every worker that ran it died), and why."""
         return cls(time=np.zeros(0), reaction=np.zeros((0, 3)), nodes=np.zeros((0, 0, 0, 3)),
-                   coordinates=None, statistics=SolverStatistics(), completed=False,
-                   message=message, wall_time=0.0, contacts=0, handle_mass=0.0)
+                   tip_force=np.zeros((0, 0, 3)), coordinates=None,
+                   statistics=SolverStatistics(), completed=False, message=message,
+                   wall_time=0.0, contacts=0, handle_mass=0.0)
 
     @classmethod
     def from_arrays(cls, data) -> GroupSolution:

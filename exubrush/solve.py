@@ -19,7 +19,7 @@ import numpy as np
 
 from exubrush.prepared import PreparedCase
 from exubrush.sanity import beyond_bound_message
-from exubrush.scene import build_scene
+from exubrush.scene import build_scene, force_on_tip
 from exubrush.solution import INTERRUPTED, GroupSolution, SolverStatistics
 from exubrush.solution_files import read_coordinate_file
 from exubrush.solver import dynamic_settings, record_coordinates
@@ -101,13 +101,19 @@ def solve_group(prepared: PreparedCase, selection: tuple[int, ...],
     drive = [np.asarray(scene.mbs.GetSensorStoredData(s)) for s in scene.drive_sensors]
     histories = [[np.asarray(scene.mbs.GetSensorStoredData(s)) for s in sensors]
                  for sensors in scene.node_sensors]
+    contact_rows = [(index, np.asarray(scene.mbs.GetSensorStoredData(sensor)))
+                    for index, sensor in scene.contact_sensors]
     statistics = solver_statistics(scene.mbs)
     # Exudyn keeps a system container alive after its last Python reference is gone: without
     # this, a worker's memory grew by the stored sensor data of every group it solved
     # (0.9 MB per default bristle and 2 periods, validation/benchmarks/README.md)
     scene.system_container.Reset()
-    n = min(len(h) for h in [*drive, *(h for nodes in histories for h in nodes)])
+    n = min(len(h) for h in [*drive, *(h for nodes in histories for h in nodes),
+                             *(rows for _, rows in contact_rows)])
     nodes = np.array([[h[:n, 1:4] for h in bristle] for bristle in histories])
+    tip_force = np.zeros((len(histories), n, 3))
+    for index, rows in contact_rows:
+        tip_force[index] = force_on_tip(case, rows[:n, 1:4])
     reaction = np.column_stack([d[:n, 1] for d in drive]) if n else np.zeros((0, 3))
     finite = np.all(np.isfinite(reaction), axis=1) & np.all(np.isfinite(nodes), axis=(0, 1, 3))
     sane = finite & (np.abs(np.nan_to_num(reaction[:, 2])) <= bound)
@@ -120,6 +126,8 @@ def solve_group(prepared: PreparedCase, selection: tuple[int, ...],
     grid, reaction = on_output_grid(recorded, reaction[:n], case.output.interval)
     _, nodes = on_output_grid(recorded, nodes[:, :, :n].transpose(2, 0, 1, 3),
                               case.output.interval)
+    _, tip_force = on_output_grid(recorded, tip_force[:, :n].transpose(1, 0, 2),
+                                  case.output.interval)
     if coordinates is not None:  # the rows up to the last sane sample
         kept = coordinates[coordinates[:, 0] <= (recorded[-1] if n else -1.0) + 1e-12]
         shape_grid, values = on_output_grid(kept[:, 0], kept[:, 1:], case.output.shape_interval)
@@ -128,6 +136,7 @@ def solve_group(prepared: PreparedCase, selection: tuple[int, ...],
         time=grid,
         reaction=reaction,
         nodes=nodes,
+        tip_force=tip_force,
         coordinates=coordinates,
         statistics=statistics,
         completed=bool(completed and n > 0 and drive[0][n - 1, 0] >= end_time - 1e-9),

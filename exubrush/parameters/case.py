@@ -440,4 +440,22 @@ def parallel_case() -> Case:
     )
 
 
-BUILT_IN_CASES = {"orthogonal": orthogonal_case, "parallel": parallel_case}
+def interdental_case() -> Case:
+    """The default head in the orthogonal motion across a row of teeth: 7 mm crowns, 1 mm
+    interdental gaps 2 mm deep, top edges rounded with 0.5 mm, the gaps along the head's
+    long axis (surface.yaw = 90°) so that the slide crosses them; at the paper's
+    d = 4.2 mm a straight tip reaches 1.2 mm below the tooth tops, into a gap."""
+    base = orthogonal_case()
+    return replace(base, name="interdental",
+                   surface=Surface(kind="tooth-row", yaw=math.radians(90.0)))
+
+
+def crown_case() -> Case:
+    """The default head in the orthogonal motion along a cylinder of 4 mm radius (a tooth
+    crown) whose axis lies along the slide."""
+    base = orthogonal_case()
+    return replace(base, name="crown", surface=Surface(kind="cylinder", radius=4.0))
+
+
+BUILT_IN_CASES = {"orthogonal": orthogonal_case, "parallel": parallel_case,
+                  "interdental": interdental_case, "crown": crown_case}

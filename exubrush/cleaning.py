@@ -1,0 +1,277 @@
+"""What a brush cleans: contact, wiped area, force share and gap penetration (pure).
+
+Computed after a run from each tip's centre and contact force at the force interval
+(``Results.tip_position``, ``Results.tip_force``), in the surface frame
+(exubrush.surfaces). Definitions:
+
+- **In contact**: the tip's contact force exceeds :data:`NO_CONTACT_FORCE`. Its contact
+  point is the point of the nearest surface feature below the centre, c − r n; its
+  *part* names where it lies (a tooth row: ``top``, ``edge`` (the rounding), ``wall``,
+  ``floor``; other surfaces: ``surface``).
+- **Strokes**: the slide cut at its reversals, every moving span, the first (from the
+  approach) and a last one cut off by the end of the run included and flagged ``whole =
+  false``.
+- **Wiped area** of a stroke: the cells of a square grid of side ``grid`` [mm] in the
+  surface frame's x-y plane that a contact patch swept (the circle in which the tip
+  sphere cuts the face, radius √(2rδ − δ²); consecutive in-contact samples of a tip joined
+  by a straight path), times the cell area: an area projected on that plane, so a wall of
+  a tooth wipes (almost) none.
+- **Force share** of a bristle in a stroke: its normal contact force (along the feature's
+  normal) integrated over the stroke, over the same for the whole head; its spread is the
+  coefficient of variation (standard deviation / mean) over the bristles of the head.
+- **Interdental penetration** (tooth row): a tip is in a gap when its centre lies over the
+  gap (|u| > w/2, exubrush.surfaces.fold) and its lowest point below the tooth tops; its
+  depth is how far below the tops that point is [mm]. Per stroke and gap: the deepest tip
+  and every tip's deepest; the time tips spent in gaps [tip-seconds].
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from exubrush.float_math import ARRAY_MATH
+from exubrush.metrics import NO_CONTACT_FORCE
+from exubrush.surfaces import features, fold, orientation, resolve, to_surface_frame, tooth_pitch
+
+if TYPE_CHECKING:
+    from exubrush.parameters.case import Surface
+
+# mm: side of a wiped-area cell, a fifth of the patch width of a default tip pressed in by
+# 2.5 µm (about 0.1 N: 2·√(2·0.4·0.0025) = 0.09 mm)
+DEFAULT_GRID = 0.02
+PARTS = {"tooth-row": ("top", "edge", "wall", "floor")}
+
+
+def part_names(surface: Surface) -> tuple[str, ...]:
+    """Names of the surface's parts, indexed by :func:`contact_geometry`'s part codes."""
+    return PARTS.get(surface.kind, ("surface",))
+
+
+def contact_geometry(surface: Surface, centres: np.ndarray, radius: np.ndarray):
+    """Contact point, outward normal and part code of tip spheres on ``surface``.
+
+    Parameters
+    ----------
+    centres : ndarray (..., n_bristles, 3)
+        Tip centres, head frame fixed to the surface [mm].
+    radius : ndarray (n_bristles,)
+        Tip radii [mm].
+
+    Returns
+    -------
+    points, normals : ndarray (..., n_bristles, 3)
+        Contact point [mm] and unit normal, surface frame, of the nearest feature.
+    distances : ndarray (..., n_bristles)
+        Signed distance of the centre from that feature [mm].
+    parts : ndarray (..., n_bristles) of int
+        Index into :func:`part_names`.
+    """
+    local = to_surface_frame(surface, centres)
+    shape = local.shape[:-1]
+    flat = local.reshape(-1, 3)
+    radii = np.broadcast_to(radius, shape).reshape(-1)
+    found = [resolve(f, ARRAY_MATH) for f in features(surface, flat.T, float(radii.max()),
+                                                      ARRAY_MATH)]
+    distance = np.stack([np.broadcast_to(f.distance, radii.shape) for f in found])
+    nearest = np.argmin(distance, axis=0)
+    rows = np.arange(radii.size)
+    normals = np.stack([np.stack([np.broadcast_to(c, radii.shape) for c in f.normal], axis=1)
+                        for f in found])[nearest, rows]
+    points = flat - radii[:, None] * normals
+    parts = _parts(surface, points)
+    return (points.reshape(*shape, 3), normals.reshape(*shape, 3),
+            distance[nearest, rows].reshape(shape), parts.reshape(shape))
+
+
+def _parts(surface: Surface, points: np.ndarray) -> np.ndarray:
+    if surface.kind != "tooth-row":
+        return np.zeros(len(points), dtype=int)
+    u = np.abs(fold(surface, points[:, 0], ARRAY_MATH))
+    z = points[:, 2]
+    flat_top = 0.5 * surface.tooth_width - surface.edge_radius
+    tolerance = 1e-9 + 1e-3 * surface.edge_radius  # [mm] the contact point is on the surface
+    floor = z < -surface.gap_depth + tolerance
+    top = (u <= flat_top) & ~floor
+    edge = (u > flat_top) & (z > -surface.edge_radius - tolerance) & ~floor
+    return np.select([top, edge, floor], [0, 1, 3], default=2)
+
+
+def stroke_spans(time: np.ndarray, slider_position: np.ndarray) -> list[tuple[int, int, bool]]:
+    """Every moving span of the slide as (first sample, last sample, whole): cut where the
+    slide's direction changes; ``whole`` if it runs from one reversal to the next."""
+    velocity = np.gradient(slider_position, time) if len(time) > 1 else np.zeros_like(time)
+    speed = np.abs(velocity)
+    if speed.size == 0 or speed.max() == 0.0:
+        return []
+    direction = np.where(speed > 1e-9 * speed.max(), np.sign(velocity), 0).astype(int)
+    edges = np.flatnonzero(np.diff(direction) != 0) + 1
+    moving = [seg for seg in np.split(np.arange(time.size), edges)
+              if direction[seg[0]] != 0 and seg.size >= 2]
+    spans = []
+    for k, segment in enumerate(moving):
+        whole = 0 < k < len(moving) - 1
+        spans.append((int(segment[0]), int(segment[-1]), whole))
+    return spans
+
+
+def wiped_cells(points: np.ndarray, touching: np.ndarray, half_width: np.ndarray,
+                grid: float) -> np.ndarray:
+    """Grid cells of side ``grid`` [mm] that the contact patches swept.
+
+    ``points`` (n_t, n_b, 3) are contact points (x, y used), ``touching`` (n_t, n_b) where
+    the tips touch and ``half_width`` (n_t, n_b) the radius of each contact patch [mm].
+    Consecutive touching samples of a tip are joined by a straight path sampled every
+    grid/2 (radius interpolated); a cell counts if its centre lies in a patch or a patch's
+    centre lies in it. Returns the unique cells as rows (i, j).
+    """
+    xs, ys, radii = [], [], []
+    for b in range(points.shape[1]):
+        on = np.flatnonzero(touching[:, b])
+        if on.size == 0:
+            continue
+        path, width = points[:, b, :2], half_width[:, b]
+        xs.append(path[on, 0])
+        ys.append(path[on, 1])
+        radii.append(width[on])
+        followed = on[on + 1 < len(path)]
+        joined = followed[touching[followed + 1, b]]
+        for i in joined:
+            steps = int(np.ceil(2.0 * np.linalg.norm(path[i + 1] - path[i]) / grid))
+            s = np.linspace(0.0, 1.0, steps + 1)[1:-1]
+            xs.append(path[i, 0] + s * (path[i + 1, 0] - path[i, 0]))
+            ys.append(path[i, 1] + s * (path[i + 1, 1] - path[i, 1]))
+            radii.append(width[i] + s * (width[i + 1] - width[i]))
+    if not xs:
+        return np.zeros((0, 2), dtype=np.int64)
+    x, y, r = np.concatenate(xs), np.concatenate(ys), np.concatenate(radii)
+    reach = int(np.ceil(r.max() / grid)) + 1
+    i0, j0 = np.floor(x / grid).astype(np.int64), np.floor(y / grid).astype(np.int64)
+    keys = [_cell_key(i0, j0)]
+    for di in range(-reach, reach + 1):
+        for dj in range(-reach, reach + 1):
+            inside = np.hypot((i0 + di + 0.5) * grid - x, (j0 + dj + 0.5) * grid - y) <= r
+            keys.append(np.unique(_cell_key(i0[inside] + di, j0[inside] + dj)))
+    unique = np.unique(np.concatenate(keys))
+    return np.stack([unique >> 32, (unique & 0xFFFFFFFF) - 2**31], axis=1)
+
+
+def _cell_key(i: np.ndarray, j: np.ndarray) -> np.ndarray:
+    """One int64 per cell (i, j), |j| < 2³¹."""
+    return (i << 32) + (j + 2**31)
+
+
+def patch_radius(radius, distance) -> np.ndarray:
+    """Radius of the circle in which a sphere of ``radius`` whose centre lies ``distance``
+    from a face cuts it, √(2rδ − δ²) with δ = r − d [mm] (0 without overlap)."""
+    depth = np.clip(radius - distance, 0.0, radius)
+    return np.sqrt(2.0 * radius * depth - depth * depth)
+
+
+def gap_depths(surface: Surface, centres_local: np.ndarray, radius: np.ndarray):
+    """Depth below the tooth tops of each tip's lowest point while it is in a gap [mm]
+    (0 elsewhere), the index k of the gap under the tip (between teeth k and k + 1, teeth
+    counted from the one at the surface's origin) and whether the tip is in it."""
+    x, z = centres_local[..., 0], centres_local[..., 2]
+    u = fold(surface, x, ARRAY_MATH)
+    depth = np.maximum(radius - z, 0.0)
+    inside = (np.abs(u) > 0.5 * surface.tooth_width) & (depth > 0.0)
+    gap = np.floor(x / tooth_pitch(surface)).astype(int)
+    return np.where(inside, depth, 0.0), gap, inside
+
+
+def cleaning_summary(surface: Surface, time, slider_position, tip_position, tip_force,
+                     tip_radius, grid: float = DEFAULT_GRID) -> dict:
+    """The cleaning metrics of a run (see module docstring) as plain JSON-ready values.
+
+    ``tip_position``, ``tip_force``: (n_t, n_bristles, 3), head frame fixed to the surface
+    [mm, N]; ``tip_radius``: (n_bristles,) [mm]; ``grid``: wiped-area cell side [mm].
+    """
+    time = np.asarray(time, dtype=float)
+    radius = np.asarray(tip_radius, dtype=float)
+    if not grid > 0.0:
+        raise ValueError(f"the wiped-area grid must be positive, got {grid!r} mm")
+    points, normals, distances, parts = contact_geometry(surface, tip_position, radius)
+    half_width = patch_radius(radius, distances)
+    force_local = np.asarray(tip_force) @ orientation(surface)  # rows: Rᵀ f
+    normal_force = np.einsum("tbi,tbi->tb", force_local, normals)
+    touching = np.linalg.norm(tip_force, axis=2) > NO_CONTACT_FORCE
+    names = part_names(surface)
+    dt = np.gradient(time) if len(time) > 1 else np.zeros_like(time)
+    summary = {
+        "surface": surface.kind,
+        "grid_mm": grid,
+        "parts": list(names),
+        "contact_time_per_part_tip_s": {
+            name: float(np.sum(dt[:, None] * (touching & (parts == k))))
+            for k, name in enumerate(names)},
+        "strokes": [],
+    }
+    teeth = surface.kind == "tooth-row"
+    if teeth:
+        local = to_surface_frame(surface, tip_position)
+        depth, gap, inside = gap_depths(surface, local, radius)
+    for index, (first, last, whole) in enumerate(stroke_spans(time, slider_position)):
+        rows = slice(first, last + 1)
+        span_dt = dt[rows, None]
+        count = touching[rows].sum(axis=1)
+        pressed = np.sum(np.maximum(normal_force[rows], 0.0) * span_dt, axis=0)
+        share = pressed / pressed.sum() if pressed.sum() > 0 else np.zeros_like(pressed)
+        stroke = {
+            "index": index,
+            "start_s": float(time[first]),
+            "end_s": float(time[last]),
+            "whole": whole,
+            "tips_in_contact_mean": float(count.mean()),
+            "tips_in_contact_max": int(count.max()),
+            "wiped_area_mm2": len(wiped_cells(points[rows], touching[rows], half_width[rows],
+                                              grid)) * grid**2,
+            "force_share": share.tolist(),
+            "force_share_max": float(share.max()),
+            "force_share_spread": float(share.std() / share.mean()) if share.mean() else 0.0,
+        }
+        if teeth:
+            stroke["interdental"] = _interdental(depth[rows], gap[rows], inside[rows], span_dt)
+        summary["strokes"].append(stroke)
+    return summary
+
+
+def _interdental(depth: np.ndarray, gap: np.ndarray, inside: np.ndarray,
+                 dt: np.ndarray) -> dict:
+    gaps = []
+    for k in sorted(set(gap[inside].tolist())):
+        per_tip = np.where(inside & (gap == k), depth, 0.0).max(axis=0)
+        entered = per_tip > 0.0
+        gaps.append({"gap": int(k), "max_depth_mm": float(per_tip.max()),
+                     "tips_entered": int(entered.sum()),
+                     "depths_mm": per_tip[entered].tolist()})
+    return {
+        "max_depth_mm": float(depth.max()) if depth.size else 0.0,
+        "time_in_gaps_tip_s": float(np.sum(dt * inside)),
+        "gaps": gaps,
+    }
+
+
+def footprint(surface: Surface, time, tip_position, tip_force, tip_radius, cell: float):
+    """Contact time per cell of side ``cell`` [mm] in the surface frame's x-y plane
+    [tip-seconds], over the run: (counts (n_x, n_y), x edges, y edges)."""
+    points, _, _, _ = contact_geometry(surface, tip_position,
+                                       np.asarray(tip_radius, dtype=float))
+    touching = np.linalg.norm(tip_force, axis=2) > NO_CONTACT_FORCE
+    dt = np.gradient(time) if len(time) > 1 else np.zeros_like(time)
+    weights = np.broadcast_to(dt[:, None], touching.shape)[touching]
+    x, y = points[touching][:, 0], points[touching][:, 1]
+    if x.size == 0:
+        x, y, weights = np.zeros(1), np.zeros(1), np.zeros(1)
+    bins = [np.arange(np.floor(v.min() / cell) * cell, v.max() + 1.5 * cell, cell)
+            for v in (x, y)]
+    counts, x_edges, y_edges = np.histogram2d(x, y, bins=bins, weights=weights)
+    return counts, x_edges, y_edges
+
+
+def gap_depth_history(surface: Surface, tip_position, tip_radius) -> np.ndarray:
+    """Deepest tip in a gap at each sample [mm] (0 when none is; tooth rows only)."""
+    local = to_surface_frame(surface, tip_position)
+    depth, _, _ = gap_depths(surface, local, np.asarray(tip_radius, dtype=float))
+    return depth.max(axis=1)
