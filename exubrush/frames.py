@@ -16,8 +16,10 @@ from matplotlib.collections import LineCollection, PatchCollection
 from matplotlib.patches import Circle
 
 from exubrush.files import atomic_file
+from exubrush.parameters.case import Surface
 from exubrush.plotting import figure
 from exubrush.results import ResultsError, read_results
+from exubrush.surfaces import height, to_surface_frame
 
 VIEW_AXES = {"orthogonal": (1, 0), "parallel": (0, 1)}  # (slide axis, other axis) in x, y, z
 
@@ -38,6 +40,10 @@ class RunShapes:
         Tip sphere radii [mm].
     direction : str
         Slide direction (``orthogonal`` or ``parallel``).
+    surface : Surface
+        The surface brushed.
+    centre : ndarray (n_t, 3)
+        The roots' centre at each sample, head frame fixed to the surface (z = 0) [mm].
     """
 
     label: str
@@ -45,6 +51,8 @@ class RunShapes:
     lines: np.ndarray
     tip_radius: np.ndarray
     direction: str
+    surface: Surface
+    centre: np.ndarray
 
 
 def load_shapes(directory: str | Path) -> RunShapes:
@@ -69,7 +77,8 @@ def load_shapes(directory: str | Path) -> RunShapes:
     lines = nodes - centre[:, None, None, :]
     label = f"{meta.get('model', '?').upper()}: {Path(directory).name}"
     return RunShapes(label, np.asarray(results.shape_time), lines,
-                     np.array([b.tip_radius for b in bristles]), case.motion.direction)
+                     np.array([b.tip_radius for b in bristles]), case.motion.direction,
+                     case.surface, centre)
 
 
 def nearest_samples(run: RunShapes, times) -> list[int]:
@@ -82,7 +91,8 @@ def _limits(runs: list[RunShapes]) -> tuple[float, float, float]:
     reach = max(float(np.max(np.abs(r.lines[..., :2]))) + float(r.tip_radius.max())
                 for r in runs)
     top = max(float(np.max(r.lines[..., 2])) for r in runs)
-    return 1.05 * reach, -0.05 * top, 1.05 * top
+    low = min(float(np.min(r.lines[..., 2]) - r.tip_radius.max()) for r in runs)
+    return 1.05 * reach, min(-0.05 * top, low - 0.3), 1.05 * top
 
 
 def _draw_view(axis, run: RunShapes, sample: int, horizontal: int, limits) -> None:
@@ -94,8 +104,14 @@ def _draw_view(axis, run: RunShapes, sample: int, horizontal: int, limits) -> No
     axis.add_collection(PatchCollection(tips, facecolor="tab:orange", edgecolor="0.3",
                                         linewidth=0.4, alpha=0.7))
     half, bottom, top = limits
-    axis.axhspan(bottom, 0.0, color="0.85")
-    axis.axhline(0.0, color="0.3", lw=0.8)
+    along = np.linspace(-half, half, 801)
+    points = np.zeros((along.size, 3))
+    points[:, :2] = run.centre[sample, :2]
+    points[:, horizontal] += along
+    local = to_surface_frame(run.surface, points)
+    profile = height(run.surface, local[:, 0], local[:, 1])
+    axis.fill_between(along, np.minimum(profile, bottom), profile, color="0.85")
+    axis.plot(along, profile, color="0.3", lw=0.8)
     axis.set_xlim(-half, half)
     axis.set_ylim(bottom, top)
     axis.set_aspect("equal")

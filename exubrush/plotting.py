@@ -124,8 +124,9 @@ def _save(fig, directory, name) -> str:
 
 
 def plot_cleaning(results, summary: dict, target) -> None:
-    """Footprint of contact on the surface, tips in contact (and, on a tooth row, the
-    deepest tip in a gap) against time, and each bristle's force share; PNG to ``target``."""
+    """Footprint of contact on the surface, tips in contact against time, on a tooth row
+    the deepest tip in a gap against time (elsewhere the wiped area per stroke), and each
+    bristle's force share; PNG to ``target``."""
     case = results.case()
     surface = case.surface
     radius = [b.tip_radius for b in head_bristles(case.head)]
@@ -151,7 +152,13 @@ def plot_cleaning(results, summary: dict, target) -> None:
         depth_axis.set_xlabel("time [s]")
         depth_axis.set_title("interdental penetration", fontsize=9)
     else:
-        axes[1][0].axis("off")
+        stroke_axis = axes[1][0]
+        wiped = [s["wiped_area_mm2"] for s in summary["strokes"]]
+        stroke_axis.bar(np.arange(len(wiped)), wiped, color="tab:green")
+        stroke_axis.set_xlabel("stroke (the first and an unfinished last one are partial)")
+        stroke_axis.set_ylabel("wiped area [mm²]")
+        stroke_axis.set_title(f"area swept by the contact patches ({summary['grid_mm']:g} mm "
+                              "grid)", fontsize=9)
     strokes = [s for s in summary["strokes"] if s["whole"]] or summary["strokes"]
     if strokes:
         share = np.mean([s["force_share"] for s in strokes], axis=0)

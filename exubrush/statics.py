@@ -1,16 +1,23 @@
-"""Static solutions of single bristle models in Exudyn (for convergence checks)."""
+"""Static solutions in Exudyn for checks against closed forms: single bristle models and a
+tip sphere pressed onto a surface."""
 
 from __future__ import annotations
 
 import exudyn as exu
 import exudyn.itemInterface as eii
 import numpy as np
+from exudyn.rigidBodyUtilities import InertiaSphere
 
+from exubrush.contact.exudyn_contact import (
+    add_tip_contact,
+    contact_user_function,
+    surface_marker,
+)
 from exubrush.models.assembly import rigid_marker
 from exubrush.models.dfm import add_dfm_bristle
 from exubrush.models.geometry import BristleGeometry
 from exubrush.models.prb import add_prb_bristle
-from exubrush.parameters.case import Material
+from exubrush.parameters.case import ContactLaw, Material, Surface
 from exubrush.solver import static_settings
 
 
@@ -80,3 +87,50 @@ def pinned_prb_push(
         raise RuntimeError("static solve of the pushed PRB bristle did not converge")
     position = np.asarray(mbs.GetNodeOutput(items.nodes[-1], exu.OutputVariableType.Position))
     return float(np.dot(tip_point - position, axis))
+
+
+def sphere_pressed_on_surface(surface: Surface, law: ContactLaw, radius: float, anchor,
+                              direction, force: float, load_steps: int = 20) -> np.ndarray:
+    """Centre of a rigid tip sphere pressed onto ``surface`` by a dead force, in statics.
+
+    The sphere's centre may only move along the line anchor + s · direction (head frame,
+    ``direction`` a unit vector, pointing away from the surface); it starts at s = r − 1 µm
+    (just touching) and a force of ``force`` [N] pushes it along −direction, applied in
+    ``load_steps`` equal increments. The contact is the one a run builds
+    (exubrush.contact.exudyn_contact, the paper's law in the symbolic back end); a static
+    solve has no velocities, so only the law's elastic term acts.
+
+    Returns
+    -------
+    ndarray (3,)
+        The centre at equilibrium [mm], head frame.
+    """
+    anchor = np.asarray(anchor, dtype=float)
+    axis = np.asarray(direction, dtype=float)
+    helper = np.array([0.0, 0.0, 1.0]) if abs(axis[2]) < 0.9 else np.array([1.0, 0.0, 0.0])
+    second = np.cross(helper, axis)
+    second /= np.linalg.norm(second)
+    frame = np.column_stack([axis, second, np.cross(axis, second)]).tolist()
+    SC = exu.SystemContainer()
+    mbs = SC.AddSystem()
+    ground = mbs.AddObject(eii.ObjectGround())
+    body = mbs.CreateRigidBody(referencePosition=(anchor + (radius - 1e-3) * axis).tolist(),
+                               inertia=InertiaSphere(1e-9, radius), gravity=[0, 0, 0],
+                               show=False, returnDict=True)
+    held = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=ground,
+                                             localHT=exu.HT(rotation=frame,
+                                                            translation=anchor.tolist())))
+    moving = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=body["bodyNumber"],
+                                               localHT=exu.HT(rotation=frame)))
+    mbs.AddObject(eii.ObjectJointGeneric(markerNumbers=[held, moving],
+                                         constrainedAxes=[0, 1, 1, 1, 1, 1],
+                                         visualization=eii.VObjectJointGeneric(show=False)))
+    function = contact_user_function(mbs, law, radius, surface=surface)
+    add_tip_contact(mbs, surface_marker(mbs, ground, surface), body["bodyNumber"], function)
+    centre = mbs.AddMarker(eii.MarkerBodyPosition(bodyNumber=body["bodyNumber"],
+                                                  localPosition=[0, 0, 0]))
+    mbs.AddLoad(eii.LoadForceVector(markerNumber=centre, loadVector=(-force * axis).tolist()))
+    mbs.Assemble()
+    if not mbs.SolveStatic(static_settings(load_steps)):
+        raise RuntimeError("static solve of the pressed sphere did not converge")
+    return np.asarray(mbs.GetNodeOutput(body["nodeNumber"], exu.OutputVariableType.Position))

@@ -98,7 +98,8 @@ def resolve(feature: Feature | Choice, m=FLOAT_MATH) -> Feature:
 def _round_feature(a, b, c, radius, m) -> Feature:
     """Outside of a ball (b given) or of a cylinder along the second axis (b None) of
     ``radius`` centred at the origin of (a, b, c)."""
-    square = a * a + c * c if b is None else a * a + b * b + c * c
+    # x**2 evaluates x once in Exudyn's expression tree, x * x twice
+    square = a**2 + c**2 if b is None else a**2 + b**2 + c**2
     length = m.sqrt(square)
     inverse = 1.0 / m.max(length, _TINY)
     normal = (a * inverse, 0.0 if b is None else b * inverse, c * inverse)
@@ -139,11 +140,13 @@ def _tooth_feature(surface: Surface, u, z, m) -> Choice:
     top = Feature((0.0, 0.0, 1.0), z)
 
     def side(sign: float) -> Choice:
-        a = sign * u - (half - rho)
-        wall = Feature((sign, 0.0, 0.0), sign * u - half)
-        corner = m.sqrt(a * a + b * b)
+        a = (u if sign > 0 else -u) - (half - rho)
+        wall = Feature((sign, 0.0, 0.0), (u if sign > 0 else -u) - half)
+        corner = m.sqrt(a**2 + b**2)
+        # used only where a, b > 0 (the Choice below); the guard keeps numpy's evaluation
+        # of every branch free of 0/0
         inverse = 1.0 / m.max(corner, _TINY)
-        rounding = Feature((sign * a * inverse, 0.0, b * inverse), corner - rho)
+        rounding = Feature(((a if sign > 0 else -a) * inverse, 0.0, b * inverse), corner - rho)
         return Choice(a > 0.0, Choice(b > 0.0, rounding, wall), Choice(a > b, wall, top))
 
     return Choice(u >= 0.0, side(1.0), side(-1.0))

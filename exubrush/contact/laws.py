@@ -63,6 +63,25 @@ def friction_coefficient(law: ContactLaw, slip_speed, m=FLOAT_MATH):
     return m.IfThenElse(slip_speed < law.static_velocity, to_static, to_dynamic)
 
 
+def friction_per_speed(law: ContactLaw, slip_square, m=FLOAT_MATH):
+    """μ(v) / v [s/mm] as a function of v² = |v_t|² [mm²/s²]: :func:`friction_coefficient`
+    over the slip speed, written so that Exudyn's expression tree uses its argument as few
+    times as possible (it evaluates a subexpression again at every use).
+
+    Below v_s the odd cubic step is μ_s (3/2 ξ − 1/2 ξ³), ξ = v / v_s, so μ/v =
+    μ_s / v_s (3/2 − 1/2 v²/v_s²): no square root, and finite at v = 0 (the viscous-like
+    limit 1.5 μ_s / v_s). Above, the cubic step to μ_d is μ_s + (μ_d − μ_s) η²(3 − 2η),
+    η = min((v − v_s)/(v_d − v_s), 1).
+    """
+    vs, vd = law.static_velocity, law.dynamic_velocity
+    mu_s, mu_d = law.static_friction, law.dynamic_friction
+    creeping = mu_s / vs * (1.5 - 0.5 / (vs * vs) * slip_square)
+    speed = m.sqrt(m.max(slip_square, vs * vs))
+    eta = m.min((speed - vs) / (vd - vs), 1.0)
+    sliding = (mu_s + (mu_d - mu_s) * eta**2 * (3.0 - 2.0 * eta)) / speed
+    return m.IfThenElse(slip_square < vs * vs, creeping, sliding)
+
+
 def sphere_plane_force(
     law: ContactLaw, radius: float, centre, velocity, omega, m=FLOAT_MATH, friction_scale=1.0
 ):
@@ -136,9 +155,9 @@ def sphere_feature_force(
     normal_speed = _sum(*(_product(velocity[i], normal[i]) for i in range(3)))
     slip = _tangential(contact_velocity, normal, normal_speed)
     force_n = normal_force(law, radius - distance, -normal_speed, m)
-    slip_square = _sum(*(_product(c, c) for c in slip))
-    slip_speed = m.sqrt(slip_square + 1e-12)
-    scale = -friction_scale * friction_coefficient(law, slip_speed, m) * force_n / slip_speed
+    # c**2: one evaluation of c in Exudyn's tree, where c*c takes two
+    slip_square = _sum(*(0.0 if _is_number(c) and c == 0.0 else c**2 for c in slip))
+    scale = -friction_scale * force_n * friction_per_speed(law, slip_square, m)
     force = [_sum(_product(force_n, normal[i]), _product(scale, slip[i])) for i in range(3)]
     # (−r n) × F_t, F_t = scale · slip
     arm = -radius * scale

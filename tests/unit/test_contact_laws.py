@@ -8,6 +8,7 @@ import pytest
 from exubrush.contact.laws import (
     builtin_contact_parameters,
     friction_coefficient,
+    friction_per_speed,
     normal_force,
     sphere_feature_force,
     sphere_plane_force,
@@ -168,7 +169,18 @@ def test_feature_law_along_z_is_the_plane_law():
     state = ([0.0, 0.0, 0.37], [1.0, -0.5, -2.0], [0.3, 0.1, 0.2])
     plane = sphere_plane_force(LAW, 0.4, *state)
     face = sphere_feature_force(LAW, 0.4, (0.0, 0.0, 1.0), 0.37, state[1], state[2])
-    np.testing.assert_allclose(face, plane, rtol=1e-15, atol=1e-17)
+    # the face law computes μ(v)/v in one expression (friction_per_speed) where the plane
+    # law divides μ(v) by v: the same function, rounded differently
+    np.testing.assert_allclose(face, plane, rtol=1e-12, atol=1e-17)
+
+
+@pytest.mark.parametrize("speed", [0.0, 1e-7, 0.3, 1.19999, 1.2, 1.2001, 1.35, 1.5, 1.6, 40.0])
+def test_friction_per_speed_is_the_coefficient_over_the_speed(speed):
+    per_speed = friction_per_speed(LAW, speed**2)
+    if speed == 0.0:
+        assert per_speed == pytest.approx(1.5 * LAW.static_friction / LAW.static_velocity)
+    else:
+        assert per_speed * speed == pytest.approx(friction_coefficient(LAW, speed), rel=1e-12)
 
 
 def test_surface_law_sums_the_touched_features_only():
