@@ -137,12 +137,16 @@ def wiped_cells(points: np.ndarray, touching: np.ndarray, half_width: np.ndarray
         radii.append(width[on])
         followed = on[on + 1 < len(path)]
         joined = followed[touching[followed + 1, b]]
-        for i in joined:
-            steps = int(np.ceil(2.0 * np.linalg.norm(path[i + 1] - path[i]) / grid))
-            s = np.linspace(0.0, 1.0, steps + 1)[1:-1]
-            xs.append(path[i, 0] + s * (path[i + 1, 0] - path[i, 0]))
-            ys.append(path[i, 1] + s * (path[i + 1, 1] - path[i, 1]))
-            radii.append(width[i] + s * (width[i + 1] - width[i]))
+        steps = np.ceil(2.0 * np.linalg.norm(path[joined + 1] - path[joined], axis=1)
+                        / grid).astype(int)
+        inner = np.maximum(steps - 1, 0)  # points strictly between the two samples
+        start = np.repeat(joined, inner)
+        rank = np.arange(inner.sum()) - np.repeat(np.cumsum(inner) - inner, inner) + 1
+        s = (rank / np.repeat(np.maximum(steps, 1), inner))[:, None]
+        between = path[start] + s * (path[start + 1] - path[start])
+        xs.append(between[:, 0])
+        ys.append(between[:, 1])
+        radii.append(width[start] + s[:, 0] * (width[start + 1] - width[start]))
     if not xs:
         return np.zeros((0, 2), dtype=np.int64)
     x, y, r = np.concatenate(xs), np.concatenate(ys), np.concatenate(radii)

@@ -145,7 +145,8 @@ def run(case, model, segments, periods, out, overrides, overwrite, quiet, preset
         store.close()
         click.echo(f"completed: {meta['simulated_time_s']:.2f} s simulated in "
                    f"{meta['wall_time_s']:.1f} s wall time; results in {directory}/ "
-                   "(forces.csv, run.json, forces.png, shapes.npz)")
+                   "(forces.csv, run.json, forces.png, shapes.npz, tips.npz, summary.json, "
+                   "cleaning.png)")
         return
     saved = (f"partial results up to t = {meta['simulated_time_s']:.4g} s in {directory}/"
              if len(results.time) else f"no complete time series yet; status in {directory}/")

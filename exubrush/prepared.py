@@ -30,6 +30,7 @@ from exubrush.parameters.case import Case
 from exubrush.parameters.fields import ParameterError
 from exubrush.reference.howell_fit import fit_prb_parameters
 from exubrush.sanity import normal_force_bound, static_force_limits
+from exubrush.surfaces import highest_near
 
 
 @dataclass(frozen=True)
@@ -80,6 +81,9 @@ class PreparedCase:
         that a resume can tell a changed file from the same one (exubrush.rundir).
     warnings : tuple of str
         What the user should know before the run (e.g. a slide CSV faster than the step).
+    reaching : tuple of bool
+        Per bristle, whether its tip can ever touch the surface (those that cannot get no
+        contact element).
     """
 
     case: Case
@@ -93,6 +97,7 @@ class PreparedCase:
     work: WorkEstimate
     inputs: tuple[tuple[str, str], ...]
     warnings: tuple[str, ...] = ()
+    reaching: tuple[bool, ...] = ()
 
     @property
     def slide_axis(self) -> np.ndarray:
@@ -109,8 +114,7 @@ class PreparedCase:
     @property
     def unreachable(self) -> int:
         """Number of bristles that can never touch the surface."""
-        distance = self.case.motion.interaction_distance
-        return sum(not can_reach(b, distance) for b in self.bristles)
+        return sum(not reaches for reaches in self.reaching)
 
 
 def prepare(case: Case) -> PreparedCase:
@@ -131,6 +135,14 @@ def prepare(case: Case) -> PreparedCase:
         raise ParameterError(f"{key}{err}") from None
     work = estimate(case, len(bristles), motion.end_time)
     _refuse(over_work(case, work) + unresolved(case, motion))
+    reaching = surface_reach(case, bristles, motion)
+    if not any(reaching):
+        s = case.surface
+        raise ParameterError(
+            f"surface: no bristle can reach the {s.kind} at x = {s.x:g} mm, y = {s.y:g} mm "
+            f"over the whole slide at motion.interaction_distance = "
+            f"{case.motion.interaction_distance:g} mm; place it under the head (surface.x, "
+            "surface.y) or lower the interaction distance")
     return PreparedCase(
         case=case,
         bristles=bristles,
@@ -143,6 +155,7 @@ def prepare(case: Case) -> PreparedCase:
         work=work,
         inputs=input_digests(motion),
         warnings=tuple(motion_warnings(case, motion)),
+        reaching=reaching,
     )
 
 
@@ -152,6 +165,29 @@ def input_digests(motion: HeadMotion) -> tuple[tuple[str, str], ...]:
     if isinstance(motion.slide, TabulatedSlide):
         return (("motion.csv_file", motion.slide.digest),)
     return ()
+
+
+def surface_reach(case: Case, bristles, motion: HeadMotion,
+                  samples: int = 400) -> tuple[bool, ...]:
+    """Per bristle, whether its tip can touch the surface somewhere along the slide.
+
+    A tip's lowest point reaches at most l + r below its root, which stands
+    ``motion.interaction_distance`` above the surface's top, and at most l + r to the side
+    of it; it can touch if the surface's top (exubrush.surfaces.highest_near) rises above
+    that depth anywhere within that distance of the root, at any of ``samples`` slide
+    positions. On the plane this is d < l + r.
+    """
+    distance = case.motion.interaction_distance
+    if case.surface.kind == "plane":
+        return tuple(can_reach(b, distance) for b in bristles)
+    times = np.linspace(0.0, motion.end_time, samples)
+    shift = np.outer([motion.sliding(t)[0] for t in times], SLIDE_AXES[case.motion.direction])
+    reaching = []
+    for bristle in bristles:
+        reach = bristle.length + bristle.tip_radius
+        top = highest_near(case.surface, bristle.root[:2] + shift[:, :2], reach).max()
+        reaching.append(bool(distance - reach < top))
+    return tuple(reaching)
 
 
 def _refuse(problems: list[str]) -> None:

@@ -25,7 +25,7 @@ from exubrush.contact.exudyn_contact import (
 )
 from exubrush.contact.laws import builtin_contact_parameters
 from exubrush.models.dfm import add_dfm_bristle
-from exubrush.models.geometry import BristleGeometry, can_reach
+from exubrush.models.geometry import BristleGeometry
 from exubrush.models.prb import add_prb_bristle, stub_graphics
 from exubrush.models.stiffness import buckling_load
 from exubrush.motion import HeadMotion
@@ -202,8 +202,8 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
         a solve needs none.
     """
     case = prepared.case
-    bristles = (prepared.bristles if selection is None
-                else tuple(prepared.bristles[i] for i in selection))
+    indices = tuple(range(len(prepared.bristles))) if selection is None else selection
+    bristles = tuple(prepared.bristles[i] for i in indices)
     prb = prepared.prb
     gamma = None if prb is None else prb.gamma
     surface_drawing, handle_drawing = _drawings(prepared, bristles, gamma) if drawn else ([], [])
@@ -238,7 +238,7 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
                                          outputVariableType=exu.OutputVariableType.Position))
             for n in items.nodes
         ])
-        if can_reach(bristle, case.motion.interaction_distance):
+        if prepared.reaching[indices[index]]:
             contact = _add_contact(scene, prepared, surface, items.tip_body, bristle, laws)
             scene.contacts.append(contact)
             scene.contact_sensors.append((index, mbs.AddSensor(eii.SensorObject(

@@ -184,3 +184,19 @@ def orientation(surface: Surface) -> np.ndarray:
     """Rotation matrix whose columns are the surface frame's axes in the head frame."""
     c, s = np.cos(surface.yaw), np.sin(surface.yaw)
     return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+
+
+def highest_near(surface: Surface, centres, radius: float, rings: int = 12,
+                 spokes: int = 36) -> np.ndarray:
+    """The highest point of the surface's top within ``radius`` [mm] (horizontally) of
+    each head-frame point ``centres`` (n, 2), sampled on ``rings`` circles of ``spokes``
+    points and the centre [mm]."""
+    centres = np.asarray(centres, dtype=float)
+    ring = np.linspace(0.0, radius, rings + 1)[:, None]
+    angle = np.linspace(0.0, 2.0 * np.pi, spokes, endpoint=False)[None, :]
+    offsets = np.stack([(ring * np.cos(angle)).ravel(), (ring * np.sin(angle)).ravel()],
+                       axis=1)
+    points = centres[:, None, :] + offsets[None, :, :]
+    flat = np.concatenate([points, np.zeros((*points.shape[:2], 1))], axis=2)
+    local = to_surface_frame(surface, flat)
+    return height(surface, local[..., 0], local[..., 1]).max(axis=1)

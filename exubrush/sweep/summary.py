@@ -37,6 +37,9 @@ METRICS = (  # (column name, unit)
     *((f"friction_coefficient_{d}", "-") for _, d in DIRECTIONS),
     ("reversal_peak_normal_force", "N"),
     ("largest_tip_deflection", "mm"),
+    ("wiped_area_per_stroke", "mm^2"),
+    ("force_share_spread", "-"),
+    ("interdental_depth", "mm"),
 )
 NOT_SWEPT_FOR_SENSITIVITY = ("head.seed",)
 
@@ -68,7 +71,22 @@ def run_metrics(results) -> dict[str, float]:
         span = nodes[:, :, -1, :] - nodes[:, :, 0, :]  # tip relative to root [mm]
         metrics["largest_tip_deflection"] = float(
             np.max(np.linalg.norm(span - span[0], axis=-1)))
+    metrics.update(_cleaning_metrics(results))
     return metrics
+
+
+def _cleaning_metrics(results) -> dict[str, float]:
+    """Means over the whole strokes of the run's cleaning summary (exubrush.cleaning):
+    wiped area, force-share spread and, on a tooth row, the deepest tip in a gap."""
+    summary = results.cleaning() if results.tip_position is not None else None
+    whole = [s for s in summary["strokes"] if s["whole"]] if summary else []
+    if not whole:
+        return {}
+    found = {"wiped_area_per_stroke": float(np.mean([s["wiped_area_mm2"] for s in whole])),
+             "force_share_spread": float(np.mean([s["force_share_spread"] for s in whole]))}
+    if "interdental" in whole[0]:
+        found["interdental_depth"] = max(s["interdental"]["max_depth_mm"] for s in whole)
+    return found
 
 
 def write_parquet(path: Path, header: Sequence[str], rows: Sequence[Sequence]) -> bool:

@@ -199,3 +199,20 @@ def test_placed_surface_pushes_as_the_law_in_its_frame(placed, backend):
     # 1 ns of motion at these speeds changes the load by far less than 1e-6 of it
     np.testing.assert_allclose(_applied_load(surface, backend, centre, velocity, omega),
                                expected, rtol=1e-6, atol=1e-9)
+
+
+def test_a_sphere_pressed_on_a_turned_cylinder_sinks_by_the_laws_depth():
+    # statics: only the elastic term balances P, δ = (P/k)^(1/m1) on any curvature; the
+    # geometry (placement, turn, normal) decides where the sphere ends (the notebook
+    # validation/surfaces.ipynb does the same for every kind and load)
+    from exubrush.statics import sphere_pressed_on_surface
+
+    surface = Surface(kind="cylinder", radius=4.0, x=0.3, yaw=np.radians(30.0))
+    turn = orientation(surface)
+    normal = turn @ [np.sin(0.5), 0.0, np.cos(0.5)]
+    anchor = np.array([0.3, 0.0, 0.0]) + turn @ [0.0, 0.0, -4.0] + 4.0 * normal
+    centre = sphere_pressed_on_surface(surface, LAW, RADIUS, anchor, normal, 0.1)
+    depth = RADIUS - (centre - anchor) @ normal
+    # Newton's tolerance leaves ~1e-13 of δ; a wrong normal or placement misses by > 1e-3
+    assert depth == pytest.approx((0.1 / LAW.stiffness) ** (1 / LAW.stiffness_exponent),
+                                  rel=1e-9)

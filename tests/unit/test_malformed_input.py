@@ -46,6 +46,18 @@ MALFORMED = [
     ("set", ["solver.threads=2"], "threads = 2 needs partition 'coupled'"),
     ("set", ["solver.threads=2", "solver.partition='coupled'"],
      "solver.threads = 2 needs contact.backend 'exudyn-builtin'"),
+    # surfaces
+    ("set", ["surface.kind='cone'"], "surface.kind: 'cone' is not one of 'plane', 'cylinder'"),
+    ("set", ["surface.kind='tooth-row'", "surface.edge_radius='4 mm'"],
+     "edge_radius (4 mm) must be below half the tooth_width (7 mm)"),
+    ("set", ["surface.kind='tooth-row'", "surface.gap_depth='0.2 mm'"],
+     "edge_radius (0.5 mm) must not exceed gap_depth (0.2 mm)"),
+    ("set", ["surface.radius='-3 mm'"], "surface.radius: -3 mm must be > 0 mm"),
+    ("set", ["surface.kind='cylinder'", "contact.backend='exudyn-builtin'"],
+     "contact.backend 'exudyn-builtin' brushes a plane only"),
+    ("set", ["surface.kind='sphere'", "surface.x='60 mm'"],
+     "surface: no bristle can reach the sphere at x = 60 mm"),
+    ("set", ["surface.yaw=1"], "surface.yaw: 1 has no unit"),
     # renamed keys and real booleans
     ("set", ["solver.user_functions='builtin'"],
      "--set solver.user_functions: renamed contact.backend: 'symbolic' is now 'paper-symbolic'"),
