@@ -49,7 +49,7 @@ def part_names(surface: Surface) -> tuple[str, ...]:
     return PARTS.get(surface.kind, ("surface",))
 
 
-def contact_geometry(surface: Surface, centres: np.ndarray, radius: np.ndarray):
+def contact_geometry(surface: Surface, centres: np.ndarray, radius: np.ndarray, mesh=None):
     """Contact point, outward normal and part code of tip spheres on ``surface``.
 
     Parameters
@@ -58,6 +58,8 @@ def contact_geometry(surface: Surface, centres: np.ndarray, radius: np.ndarray):
         Tip centres, head frame fixed to the surface [mm].
     radius : ndarray (n_bristles,)
         Tip radii [mm].
+    mesh : exubrush.mesh.MeshSurface, optional
+        The surface's mesh (surface.kind "mesh").
 
     Returns
     -------
@@ -72,6 +74,11 @@ def contact_geometry(surface: Surface, centres: np.ndarray, radius: np.ndarray):
     shape = local.shape[:-1]
     flat = local.reshape(-1, 3)
     radii = np.broadcast_to(radius, shape).reshape(-1)
+    if mesh is not None:
+        _, normals, distance = mesh.closest_many(flat)
+        points = flat - radii[:, None] * normals
+        return (points.reshape(*shape, 3), normals.reshape(*shape, 3), distance.reshape(shape),
+                np.zeros(shape, dtype=int))
     found = [resolve(f, ARRAY_MATH) for f in features(surface, flat.T, float(radii.max()),
                                                       ARRAY_MATH)]
     distance = np.stack([np.broadcast_to(f.distance, radii.shape) for f in found])
@@ -186,17 +193,18 @@ def gap_depths(surface: Surface, centres_local: np.ndarray, radius: np.ndarray):
 
 
 def cleaning_summary(surface: Surface, time, slider_position, tip_position, tip_force,
-                     tip_radius, grid: float = DEFAULT_GRID) -> dict:
+                     tip_radius, grid: float = DEFAULT_GRID, mesh=None) -> dict:
     """The cleaning metrics of a run (see module docstring) as plain JSON-ready values.
 
     ``tip_position``, ``tip_force``: (n_t, n_bristles, 3), head frame fixed to the surface
-    [mm, N]; ``tip_radius``: (n_bristles,) [mm]; ``grid``: wiped-area cell side [mm].
+    [mm, N]; ``tip_radius``: (n_bristles,) [mm]; ``grid``: wiped-area cell side [mm];
+    ``mesh``: the surface's mesh if it is one.
     """
     time = np.asarray(time, dtype=float)
     radius = np.asarray(tip_radius, dtype=float)
     if not grid > 0.0:
         raise ValueError(f"the wiped-area grid must be positive, got {grid!r} mm")
-    points, normals, distances, parts = contact_geometry(surface, tip_position, radius)
+    points, normals, distances, parts = contact_geometry(surface, tip_position, radius, mesh)
     half_width = patch_radius(radius, distances)
     force_local = np.asarray(tip_force) @ orientation(surface)  # rows: Rᵀ f
     normal_force = np.einsum("tbi,tbi->tb", force_local, normals)
@@ -257,11 +265,12 @@ def _interdental(depth: np.ndarray, gap: np.ndarray, inside: np.ndarray,
     }
 
 
-def footprint(surface: Surface, time, tip_position, tip_force, tip_radius, cell: float):
+def footprint(surface: Surface, time, tip_position, tip_force, tip_radius, cell: float,
+              mesh=None):
     """Contact time per cell of side ``cell`` [mm] in the surface frame's x-y plane
     [tip-seconds], over the run: (counts (n_x, n_y), x edges, y edges)."""
     points, _, _, _ = contact_geometry(surface, tip_position,
-                                       np.asarray(tip_radius, dtype=float))
+                                       np.asarray(tip_radius, dtype=float), mesh)
     touching = np.linalg.norm(tip_force, axis=2) > NO_CONTACT_FORCE
     dt = np.gradient(time) if len(time) > 1 else np.zeros_like(time)
     weights = np.broadcast_to(dt[:, None], touching.shape)[touching]

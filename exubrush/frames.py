@@ -16,6 +16,7 @@ from matplotlib.collections import LineCollection, PatchCollection
 from matplotlib.patches import Circle
 
 from exubrush.files import atomic_file
+from exubrush.mesh import MeshError, MeshSurface
 from exubrush.parameters.case import Surface
 from exubrush.plotting import figure
 from exubrush.results import ResultsError, read_results
@@ -42,6 +43,9 @@ class RunShapes:
         Slide direction (``orthogonal`` or ``parallel``).
     surface : Surface
         The surface brushed.
+    mesh : MeshSurface or None
+        Its triangle mesh (surface.kind "mesh"; None also when the file is gone: the
+        surface is then not drawn).
     centre : ndarray (n_t, 3)
         The roots' centre at each sample, head frame fixed to the surface (z = 0) [mm].
     """
@@ -53,6 +57,7 @@ class RunShapes:
     direction: str
     surface: Surface
     centre: np.ndarray
+    mesh: MeshSurface | None = None
 
 
 def load_shapes(directory: str | Path) -> RunShapes:
@@ -76,9 +81,13 @@ def load_shapes(directory: str | Path) -> RunShapes:
     centre[:, 2] = 0.0
     lines = nodes - centre[:, None, None, :]
     label = f"{meta.get('model', '?').upper()}: {Path(directory).name}"
+    try:
+        mesh = results.surface_mesh()
+    except MeshError:
+        mesh = None
     return RunShapes(label, np.asarray(results.shape_time), lines,
                      np.array([b.tip_radius for b in bristles]), case.motion.direction,
-                     case.surface, centre)
+                     case.surface, centre, mesh)
 
 
 def nearest_samples(run: RunShapes, times) -> list[int]:
@@ -109,9 +118,15 @@ def _draw_view(axis, run: RunShapes, sample: int, horizontal: int, limits) -> No
     points[:, :2] = run.centre[sample, :2]
     points[:, horizontal] += along
     local = to_surface_frame(run.surface, points)
-    profile = height(run.surface, local[:, 0], local[:, 1])
-    axis.fill_between(along, np.minimum(profile, bottom), profile, color="0.85")
-    axis.plot(along, profile, color="0.3", lw=0.8)
+    if run.surface.kind != "mesh":
+        profile = height(run.surface, local[:, 0], local[:, 1])
+    elif run.mesh is not None:  # the highest triangle over each point of the section
+        profile = np.maximum(run.mesh.heights(local[:, :2]), bottom)
+    else:
+        profile = None
+    if profile is not None:
+        axis.fill_between(along, np.minimum(profile, bottom), profile, color="0.85")
+        axis.plot(along, profile, color="0.3", lw=0.8)
     axis.set_xlim(-half, half)
     axis.set_ylim(bottom, top)
     axis.set_aspect("equal")

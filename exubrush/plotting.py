@@ -123,7 +123,7 @@ def _save(fig, directory, name) -> str:
     return name
 
 
-def plot_cleaning(results, summary: dict, target) -> None:
+def plot_cleaning(results, summary: dict, target, mesh=None) -> None:
     """Footprint of contact on the surface, tips in contact against time, on a tooth row
     the deepest tip in a gap against time (elsewhere the wiped area per stroke), and each
     bristle's force share; PNG to ``target``."""
@@ -133,7 +133,7 @@ def plot_cleaning(results, summary: dict, target) -> None:
     teeth = surface.kind == "tooth-row"
     fig, axes = figure(2, 2, figsize=(11, 8), squeeze=False)
     counts, x_edges, y_edges = footprint(surface, results.time, results.tip_position,
-                                         results.tip_force, radius, cell=0.25)
+                                         results.tip_force, radius, cell=0.25, mesh=mesh)
     image = axes[0][0].pcolormesh(x_edges, y_edges, counts.T, cmap="viridis")
     fig.colorbar(image, ax=axes[0][0], label="contact time per 0.25 mm cell [tip-s]")
     axes[0][0].set_aspect("equal")

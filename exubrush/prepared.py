@@ -10,6 +10,7 @@ unreadable slide CSV) are raised here as :class:`~exubrush.parameters.fields.Par
 
 from __future__ import annotations
 
+import hashlib
 from dataclasses import dataclass
 
 import numpy as np
@@ -23,6 +24,7 @@ from exubrush.budget import (
     unresolved,
 )
 from exubrush.kinematics import SLIDE_AXES
+from exubrush.mesh import MeshError, MeshSurface, read_mesh
 from exubrush.models.geometry import BristleGeometry, can_reach, head_bristles
 from exubrush.models.howell import howell_parameters
 from exubrush.motion import HeadMotion, TabulatedSlide, head_motion
@@ -30,7 +32,7 @@ from exubrush.parameters.case import Case
 from exubrush.parameters.fields import ParameterError
 from exubrush.reference.howell_fit import fit_prb_parameters
 from exubrush.sanity import normal_force_bound, static_force_limits
-from exubrush.surfaces import highest_near
+from exubrush.surfaces import highest_near, to_surface_frame
 
 
 @dataclass(frozen=True)
@@ -84,6 +86,8 @@ class PreparedCase:
     reaching : tuple of bool
         Per bristle, whether its tip can ever touch the surface (those that cannot get no
         contact element).
+    mesh : MeshSurface or None
+        The surface's triangle mesh (surface.kind "mesh"), read and checked once.
     """
 
     case: Case
@@ -98,6 +102,7 @@ class PreparedCase:
     inputs: tuple[tuple[str, str], ...]
     warnings: tuple[str, ...] = ()
     reaching: tuple[bool, ...] = ()
+    mesh: MeshSurface | None = None
 
     @property
     def slide_axis(self) -> np.ndarray:
@@ -135,7 +140,13 @@ def prepare(case: Case) -> PreparedCase:
         raise ParameterError(f"{key}{err}") from None
     work = estimate(case, len(bristles), motion.end_time)
     _refuse(over_work(case, work) + unresolved(case, motion))
-    reaching = surface_reach(case, bristles, motion)
+    mesh = None
+    if case.surface.kind == "mesh":
+        try:
+            mesh = read_mesh(case.surface.mesh_file, case.surface.mesh_unit)
+        except MeshError as err:
+            raise ParameterError(str(err)) from None
+    reaching = surface_reach(case, bristles, motion, mesh)
     if not any(reaching):
         s = case.surface
         raise ParameterError(
@@ -153,21 +164,29 @@ def prepare(case: Case) -> PreparedCase:
         force_limits=static_force_limits(case, bristles),
         groups=bristle_groups(case, len(bristles)),
         work=work,
-        inputs=input_digests(motion),
+        inputs=input_digests(motion, mesh),
         warnings=tuple(motion_warnings(case, motion)),
         reaching=reaching,
+        mesh=mesh,
     )
 
 
-def input_digests(motion: HeadMotion) -> tuple[tuple[str, str], ...]:
-    """(key, SHA-256) of what the run read from each input file: the slide profile as it
-    was parsed, so the file is not read twice and the hash is of the data the run uses."""
+def input_digests(motion: HeadMotion, mesh: MeshSurface | None = None
+                  ) -> tuple[tuple[str, str], ...]:
+    """(key, SHA-256) of what the run read from each input file: the slide profile and the
+    mesh's triangles [mm] as they were parsed, so no file is read twice and the hash is of
+    the data the run uses."""
+    digests = []
     if isinstance(motion.slide, TabulatedSlide):
-        return (("motion.csv_file", motion.slide.digest),)
-    return ()
+        digests.append(("motion.csv_file", motion.slide.digest))
+    if mesh is not None:
+        digests.append(("surface.mesh_file",
+                        hashlib.sha256(np.ascontiguousarray(mesh.triangles).tobytes())
+                        .hexdigest()))
+    return tuple(digests)
 
 
-def surface_reach(case: Case, bristles, motion: HeadMotion,
+def surface_reach(case: Case, bristles, motion: HeadMotion, mesh: MeshSurface | None = None,
                   samples: int = 400) -> tuple[bool, ...]:
     """Per bristle, whether its tip can touch the surface somewhere along the slide.
 
@@ -175,17 +194,25 @@ def surface_reach(case: Case, bristles, motion: HeadMotion,
     ``motion.interaction_distance`` above the surface's top, and at most l + r to the side
     of it; it can touch if the surface's top (exubrush.surfaces.highest_near) rises above
     that depth anywhere within that distance of the root, at any of ``samples`` slide
-    positions. On the plane this is d < l + r.
+    positions (on a mesh: anywhere near the root's straight path, an upper bound). On the
+    plane this is d < l + r.
     """
     distance = case.motion.interaction_distance
     if case.surface.kind == "plane":
         return tuple(can_reach(b, distance) for b in bristles)
     times = np.linspace(0.0, motion.end_time, samples)
-    shift = np.outer([motion.sliding(t)[0] for t in times], SLIDE_AXES[case.motion.direction])
+    axis = SLIDE_AXES[case.motion.direction]
+    shift = np.outer([motion.sliding(t)[0] for t in times], axis)
     reaching = []
     for bristle in bristles:
         reach = bristle.length + bristle.tip_radius
-        top = highest_near(case.surface, bristle.root[:2] + shift[:, :2], reach).max()
+        centres = bristle.root[:2] + shift[:, :2]
+        if mesh is None:
+            top = highest_near(case.surface, centres, reach).max()
+        else:  # the root's straight path, in the mesh's frame (placed by x, y, yaw)
+            ends = to_surface_frame(case.surface, np.column_stack(
+                [centres[[np.argmin(shift @ axis), np.argmax(shift @ axis)]], np.zeros(2)]))
+            top = mesh.top_near_segment(ends[0, :2], ends[1, :2], reach)
         reaching.append(bool(distance - reach < top))
     return tuple(reaching)
 

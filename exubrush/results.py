@@ -17,6 +17,7 @@ import numpy as np
 
 from exubrush.cleaning import cleaning_summary
 from exubrush.files import atomic_file, write_csv
+from exubrush.mesh import MeshError, read_mesh
 from exubrush.metrics import friction_coefficient, travelled_distance
 from exubrush.models.geometry import head_bristles
 from exubrush.parameters.case import Case
@@ -93,8 +94,20 @@ class Results:
             return None
         case = self.case()
         radius = [b.tip_radius for b in head_bristles(case.head)]
+        try:
+            mesh = self.surface_mesh()
+        except MeshError:  # the run's mesh file is gone or changed: no metrics
+            return None
         return cleaning_summary(case.surface, self.time, self.slider_position,
-                                self.tip_position, self.tip_force, radius)
+                                self.tip_position, self.tip_force, radius, mesh=mesh)
+
+    def surface_mesh(self):
+        """The run's surface mesh (exubrush.mesh.MeshSurface) read again from its file, or
+        None on an analytic surface; MeshError if the file is gone or unreadable."""
+        surface = self.case().surface
+        if surface.kind != "mesh":
+            return None
+        return read_mesh(surface.mesh_file, surface.mesh_unit)
 
     def save(self, directory: str | Path) -> Path:
         """Write forces.csv, run.json, shapes.npz, forces.png and, with tip data, tips.npz,
@@ -135,7 +148,7 @@ class Results:
                 json.dump({"data_origin": self.metadata.get("data_origin", ""),
                            "cleaning": summary}, handle, indent=2)
             with atomic_file(directory / "cleaning.png", "wb") as handle:
-                plot_cleaning(self, summary, handle)
+                plot_cleaning(self, summary, handle, self.surface_mesh())
         self._save_metadata(directory)
         return directory
 

@@ -24,6 +24,7 @@ from exubrush.contact.exudyn_contact import (
     surface_marker,
 )
 from exubrush.contact.laws import builtin_contact_parameters
+from exubrush.mesh import frame_with_normal
 from exubrush.models.dfm import add_dfm_bristle
 from exubrush.models.geometry import BristleGeometry
 from exubrush.models.prb import add_prb_bristle, stub_graphics
@@ -53,9 +54,13 @@ class Scene:
     drive_sensors: list = field(default_factory=list)
     node_sensors: list = field(default_factory=list)
     contacts: list = field(default_factory=list)
-    # (index of the bristle in the scene, sensor of its contact's force) per contact
+    # (index of the bristle in the scene, sensor of its contact's force, sensor of the
+    # contact frame's rotation matrix where that frame moves (a mesh), else None)
     contact_sensors: list = field(default_factory=list)
     keep_alive: list = field(default_factory=list)
+    # (tip node, marker of its tangent plane) of each tip on a mesh surface
+    tangent_planes: list = field(default_factory=list)
+    ground: int = 0
     # callables (mbs, t) that the solve must call before every step
     step_hooks: list = field(default_factory=list)
 
@@ -114,7 +119,7 @@ def _drawings(prepared: PreparedCase, bristles, gamma: float | None):
     """Graphics of the surface and of the handle (a block above the roots, and the PRB
     stubs of a link factor ``gamma``) for Exudyn's renderer [mm]."""
     size = 2.0 * (max(HANDLE_SIZE) + prepared.case.motion.amplitude)
-    surface = surface_graphics(prepared.case.surface, size)
+    surface = surface_graphics(prepared.case.surface, size, prepared.mesh)
     handle = [graphics.Brick(centerPoint=[0.0, 0.0, 0.5 * HANDLE_SIZE[2]], size=HANDLE_SIZE,
                              color=[0.6, 0.6, 0.6, 0.5])]
     if gamma is not None:
@@ -122,11 +127,16 @@ def _drawings(prepared: PreparedCase, bristles, gamma: float | None):
     return surface, handle
 
 
-def surface_graphics(surface, size: float) -> list:
-    """Exudyn graphics of ``surface`` over a square of side ``size`` [mm], head frame."""
+def surface_graphics(surface, size: float, mesh=None) -> list:
+    """Exudyn graphics of ``surface`` over a square of side ``size`` [mm] (a mesh: all of
+    it), head frame."""
     turn = orientation(surface)
     top = np.array([surface.x, surface.y, 0.0])
     grey = [0.7, 0.7, 0.7, 1.0]
+    if surface.kind == "mesh":
+        points = mesh.triangles.reshape(-1, 3) @ turn.T + top
+        trigs = np.arange(len(points)).reshape(-1, 3)
+        return [graphics.FromPointsAndTrigs(points.tolist(), trigs.tolist(), color=grey)]
     if surface.kind == "plane":
         return [graphics.CheckerBoard(point=[0.0, 0.0, 0.0], normal=[0.0, 0.0, 1.0], size=size)]
     if surface.kind == "cylinder":
@@ -149,7 +159,7 @@ def surface_graphics(surface, size: float) -> list:
 
 
 def _add_contact(scene: Scene, prepared: PreparedCase, surface_marker_number, tip_body,
-                 bristle: BristleGeometry, laws: dict):
+                 tip_node, bristle: BristleGeometry, laws: dict):
     """The tip's contact with the surface: the paper's law as a user function (one per tip
     radius, cached in ``laws``), or Exudyn's built-in contact with the nearest parameters
     (a plane only)."""
@@ -163,11 +173,18 @@ def _add_contact(scene: Scene, prepared: PreparedCase, surface_marker_number, ti
             parameters["dynamicFriction"] = 0.0  # blended in by a step hook
         return add_builtin_tip_contact(scene.mbs, surface_marker_number, tip_body,
                                        bristle.tip_radius, parameters)
-    if bristle.tip_radius not in laws:
-        laws[bristle.tip_radius] = contact_user_function(
-            scene.mbs, case.contact, bristle.tip_radius, window, case.surface)
-    return add_tip_contact(scene.mbs, surface_marker_number, tip_body,
-                           laws[bristle.tip_radius])
+    law_surface = case.surface
+    if case.surface.kind == "mesh":  # the plane law in a frame on the tangent plane
+        law_surface = None
+        surface_marker_number = scene.mbs.AddMarker(eii.MarkerBodyRigid(
+            bodyNumber=scene.ground, localHT=exu.HT(rotation=np.eye(3).tolist(),
+                                                     translation=[0.0, 0.0, -1e3])))
+        scene.tangent_planes.append((tip_node, surface_marker_number))
+    key = (bristle.tip_radius, law_surface is None)
+    if key not in laws:
+        laws[key] = contact_user_function(
+            scene.mbs, case.contact, bristle.tip_radius, window, law_surface)
+    return add_tip_contact(scene.mbs, surface_marker_number, tip_body, laws[key])
 
 
 def _contact_force_output(case):
@@ -178,13 +195,40 @@ def _contact_force_output(case):
     return exu.OutputVariableType.ForceLocal
 
 
-def force_on_tip(case, values: np.ndarray) -> np.ndarray:
+def _tangent_plane_refresh(mesh, surface, planes):
+    """A step hook that puts each tip's contact frame on the mesh's tangent plane at the
+    point closest to the tip's centre (origin there, z along the contact's outward
+    normal), before every step attempt: within a step the tip meets that plane, with the
+    plane's law (docs/surfaces.md)."""
+    turn = orientation(surface)
+    origin = np.array([surface.x, surface.y, 0.0])
+    current = {}  # marker -> (normal, n·point) of the plane it holds
+
+    def refresh(mbs, t):
+        for node, marker in planes:
+            centre = np.asarray(mbs.GetNodeOutput(node, exu.OutputVariableType.Position))
+            point, normal, _ = mesh.closest(turn.T @ (centre - origin))
+            plane = (tuple(normal), float(normal @ point))
+            if current.get(marker) == plane:
+                continue  # the same plane (a flat face): Exudyn's system stays untouched
+            current[marker] = plane
+            frame = exu.HT(rotation=(turn @ frame_with_normal(normal)).tolist(),
+                           translation=(origin + turn @ point).tolist())
+            mbs.SetMarkerParameter(marker, "localHT", frame)
+
+    return refresh
+
+
+def force_on_tip(case, values: np.ndarray, frames: np.ndarray | None = None) -> np.ndarray:
     """The contact force on a tip [N], head frame, from its contact sensor's values (n, 3):
-    minus the user-function connector's ForceLocal turned out of the surface frame, or the
-    built-in contact's Force as it is (its sign checked in
+    minus the user-function connector's ForceLocal turned out of the connector's frame
+    (the surface frame, or on a mesh the recorded rotation matrices ``frames``, rows of 9),
+    or the built-in contact's Force as it is (its sign checked in
     tests/integration/test_tip_forces.py)."""
     if case.contact.backend == "exudyn-builtin":
         return BUILTIN_FORCE_SIGN * values
+    if frames is not None:
+        return -np.einsum("nij,nj->ni", frames.reshape(-1, 3, 3), values)
     return -values @ orientation(case.surface).T
 
 
@@ -218,7 +262,7 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
         graphicsDataList=handle_drawing, returnDict=True,
     )
     scene = Scene(SC, mbs, prepared.motion, prepared.slide_axis, handle_inertia.Mass(),
-                  bristles)
+                  bristles, ground=ground)
     _add_drive(scene, handle["nodeNumber"])
     surface = surface_marker(mbs, ground, case.surface)
     laws = {}
@@ -239,12 +283,22 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
             for n in items.nodes
         ])
         if prepared.reaching[indices[index]]:
-            contact = _add_contact(scene, prepared, surface, items.tip_body, bristle, laws)
+            planes = len(scene.tangent_planes)
+            contact = _add_contact(scene, prepared, surface, items.tip_body, items.nodes[-1],
+                                   bristle, laws)
             scene.contacts.append(contact)
+            frame_sensor = None
+            if len(scene.tangent_planes) > planes:  # the frame moves: record it with the force
+                frame_sensor = mbs.AddSensor(eii.SensorMarker(
+                    markerNumber=scene.tangent_planes[-1][1], storeInternal=True,
+                    writeToFile=False, outputVariableType=exu.OutputVariableType.RotationMatrix))
             scene.contact_sensors.append((index, mbs.AddSensor(eii.SensorObject(
                 objectNumber=contact, storeInternal=True, writeToFile=False,
-                outputVariableType=_contact_force_output(case)))))
+                outputVariableType=_contact_force_output(case))), frame_sensor))
     scene.keep_alive.extend(laws.values())
+    if scene.tangent_planes:
+        scene.step_hooks.append(_tangent_plane_refresh(prepared.mesh, case.surface,
+                                                       scene.tangent_planes))
     window = prepared.friction_window
     if case.contact.backend == "exudyn-builtin" and window is not None and scene.contacts:
         scene.step_hooks.append(

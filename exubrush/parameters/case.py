@@ -154,7 +154,9 @@ class ContactLaw(Parameters):
             )
 
 
-SURFACE_KINDS = ("plane", "cylinder", "sphere", "tooth-row")
+SURFACE_KINDS = ("plane", "cylinder", "sphere", "tooth-row", "mesh")
+# the units exubrush.mesh reads (a test keeps the two lists equal)
+MESH_UNITS = ("mm", "cm", "m", "um", "in")
 
 
 @dataclass(frozen=True)
@@ -166,7 +168,9 @@ class Surface(Parameters):
     y at depth ``radius`` (a tooth crown); ``sphere`` its centre at depth ``radius``;
     ``tooth-row`` is a row of flat-topped teeth of width ``tooth_width`` along x, separated
     by interdental gaps ``gap_width`` wide and ``gap_depth`` deep, the tooth's top edges
-    rounded with ``edge_radius``, the profile extruded along y. ``x``, ``y`` and ``yaw``
+    rounded with ``edge_radius``, the profile extruded along y; ``mesh`` is the triangle
+    mesh of ``mesh_file`` (STL or OBJ, in ``mesh_unit``), its highest vertex moved to z = 0
+    (exubrush.mesh). ``x``, ``y`` and ``yaw``
     place that frame in the head frame (the head's position at the slide's centre); the
     top stays at Z = 0, so ``motion.interaction_distance`` is measured to it.
     """
@@ -180,6 +184,10 @@ class Surface(Parameters):
                              above=0.0)
     edge_radius: float = param(0.5, "tooth-row: radius of the rounded top edges of a tooth",
                                "mm", minimum=0.0)
+    mesh_file: str = param("", "mesh: STL or OBJ file of the surface (relative to the case "
+                                "file)", "text")
+    mesh_unit: str = param("mm", "mesh: unit of the file's coordinates", "text",
+                           choices=MESH_UNITS)
     x: float = param(0.0, "position of the surface's top along the head's long axis", "mm")
     y: float = param(0.0, "position of the surface's top across the head", "mm")
     yaw: float = param(0.0, "rotation of the surface about Z (0: its x along the head's "
@@ -187,7 +195,9 @@ class Surface(Parameters):
                        below=2 * math.pi)
 
     def check(self) -> None:
-        """A tooth's rounded edges fit in its crown and its gap."""
+        """A tooth's rounded edges fit in its crown and its gap; a mesh needs a file."""
+        if self.kind == "mesh" and not self.mesh_file:
+            raise ValueError("kind 'mesh' needs mesh_file (an STL or OBJ file)")
         if self.kind == "tooth-row":
             if not self.edge_radius < 0.5 * self.tooth_width:
                 raise ValueError(f"edge_radius ({self.edge_radius:g} mm) must be below half "

@@ -60,16 +60,20 @@ def load_case(case: str, overrides: list[str] | tuple[str, ...] = ()) -> Case:
         key, value = parse_override(assignment)
         apply_override(data, Case, key, value)
     built = build(Case, data)
+    folder = Path(case).parent if case.endswith(".toml") else None
     if built.motion.profile == "csv":
-        folder = Path(case).parent if case.endswith(".toml") else None
-        built = _with_resolved_slide_csv(built, folder)
+        built = replace(built, motion=replace(
+            built.motion, csv_file=_resolved(built.motion.csv_file, folder)))
+    if built.surface.kind == "mesh":
+        built = replace(built, surface=replace(
+            built.surface, mesh_file=_resolved(built.surface.mesh_file, folder)))
     return built
 
 
-def _with_resolved_slide_csv(case: Case, case_folder: Path | None) -> Case:
-    """Resolve ``motion.csv_file`` relative to the case file, as an absolute path (links are
-    kept as they are, so that a message names the path the user gave)."""
-    path = Path(case.motion.csv_file).expanduser()
+def _resolved(name: str, case_folder: Path | None) -> str:
+    """An input file's path relative to the case file, made absolute (links are kept as
+    they are, so that a message names the path the user gave)."""
+    path = Path(name).expanduser()
     if not path.is_absolute() and case_folder is not None:
         path = case_folder / path
-    return replace(case, motion=replace(case.motion, csv_file=os.path.abspath(path)))
+    return os.path.abspath(path)

@@ -1,0 +1,207 @@
+"""Triangle-mesh surfaces: reading, checking, closest points (trimesh and scipy).
+
+A mesh surface is read once (``surface.mesh_file``, STL or OBJ, coordinates in
+``surface.mesh_unit``), converted to mm and shifted so that its highest vertex lies at
+z = 0, like every surface's top (exubrush.surfaces); x and y stay as in the file. Its
+triangles' winding gives their outward normals (counter-clockwise seen from outside, the
+STL and OBJ convention), so an open mesh such as a patch of a plane is a surface too, as
+long as the winding is consistent.
+
+Closest points are trimesh's (``trimesh.triangles.closest_point``) over candidate
+triangles found with a k-d tree of the triangle centroids: a centroid lies on its
+triangle, so the nearest centroid's distance b bounds the closest distance, and a
+triangle whose centroid is farther than b + R from the point, R the largest
+centroid-to-vertex distance of any triangle, cannot hold a closer point (exact, not a
+sampling).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+import trimesh
+from scipy.spatial import cKDTree
+
+# mm per unit of a mesh file
+MESH_UNITS = {"mm": 1.0, "cm": 10.0, "m": 1000.0, "um": 1e-3, "in": 25.4}
+# a mesh whose extent in mm falls outside this range is almost surely in another unit
+PLAUSIBLE_EXTENT = (0.5, 500.0)  # mm
+
+
+class MeshError(ValueError):
+    """A mesh file is missing, unreadable, empty, inconsistently wound or implausibly sized."""
+
+
+@dataclass(frozen=True)
+class MeshSurface:
+    """A checked triangle mesh in the surface frame [mm] and its search structures.
+
+    Attributes
+    ----------
+    triangles : ndarray (n, 3, 3)
+        Vertices of each triangle [mm], counter-clockwise seen from outside.
+    normals : ndarray (n, 3)
+        Outward unit normal of each triangle.
+    """
+
+    triangles: np.ndarray
+    normals: np.ndarray
+    _tree: cKDTree = field(repr=False, compare=False)
+    _reach: float = field(repr=False, compare=False)
+    _xy_tree: cKDTree = field(repr=False, compare=False)
+    _xy_reach: float = field(repr=False, compare=False)
+
+    @classmethod
+    def from_triangles(cls, triangles: np.ndarray) -> MeshSurface:
+        """A mesh surface from its triangles (n, 3, 3) [mm], shifted so its top is z = 0."""
+        triangles = np.array(triangles, dtype=float)
+        triangles[..., 2] -= triangles[..., 2].max()
+        normals = trimesh.triangles.normals(triangles)[0]
+        centroids = triangles.mean(axis=1)
+        reach = float(np.max(np.linalg.norm(triangles - centroids[:, None, :], axis=2)))
+        xy_reach = float(np.max(np.linalg.norm(
+            triangles[..., :2] - centroids[:, None, :2], axis=2)))
+        return cls(triangles, normals, cKDTree(centroids), reach, cKDTree(centroids[:, :2]),
+                   xy_reach)
+
+    def closest(self, point) -> tuple[np.ndarray, np.ndarray, float]:
+        """Closest point on the mesh to ``point`` (surface frame) [mm], the outward normal
+        of the contact there and the signed distance [mm] (negative inside).
+
+        The normal is the direction from the closest point to the point where that is
+        defined and consistent with the nearest face's outward side (outside a face's
+        interior: edges and vertices turn it smoothly); otherwise the face's normal.
+        """
+        point = np.asarray(point, dtype=float)
+        # a centroid lies on its triangle: the nearest one bounds the distance, and every
+        # triangle with a closer point has its centroid within that bound + R
+        bound, _ = self._tree.query(point, k=1)
+        found = np.asarray(self._tree.query_ball_point(point, bound + self._reach + 1e-12))
+        nearest = trimesh.triangles.closest_point(self.triangles[found],
+                                                  np.repeat(point[None], len(found), axis=0))
+        distances = np.linalg.norm(nearest - point, axis=1)
+        best = int(np.argmin(distances))
+        face_normal = self.normals[found[best]]
+        offset = point - nearest[best]
+        distance = float(distances[best])
+        side = 1.0 if offset @ face_normal >= 0.0 else -1.0
+        normal = face_normal
+        if distance > 1e-9 * max(1.0, self._reach):
+            direction = side * offset / distance
+            # over a face's interior the direction is its normal up to rounding: keep the
+            # face's exact normal; beyond an edge or a vertex it turns with the point
+            if direction @ face_normal < 1.0 - 1e-9:
+                normal = direction
+        return nearest[best], normal, side * distance
+
+    def closest_many(self, points) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """:meth:`closest` of many points (n, 3) at once: closest points, normals, signed
+        distances (the same results; points whose first 8 candidates do not settle the
+        bound are done one by one)."""
+        points = np.asarray(points, dtype=float).reshape(-1, 3)
+        count = min(8, len(self.triangles))
+        gaps, found = self._tree.query(points, k=count)
+        gaps, found = gaps.reshape(len(points), -1), found.reshape(len(points), -1)
+        nearest = trimesh.triangles.closest_point(
+            self.triangles[found.ravel()], np.repeat(points, count, axis=0)
+        ).reshape(len(points), count, 3)
+        distances = np.linalg.norm(nearest - points[:, None, :], axis=2)
+        best = np.argmin(distances, axis=1)
+        rows = np.arange(len(points))
+        closest = nearest[rows, best]
+        distance = distances[rows, best]
+        face_normal = self.normals[found[rows, best]]
+        offset = points - closest
+        side = np.where(np.einsum("ij,ij->i", offset, face_normal) >= 0.0, 1.0, -1.0)
+        tiny = distance <= 1e-9 * max(1.0, self._reach)
+        direction = side[:, None] * offset / np.maximum(distance, 1e-300)[:, None]
+        on_face = tiny | (np.einsum("ij,ij->i", direction, face_normal) >= 1.0 - 1e-9)
+        normal = np.where(on_face[:, None], face_normal, direction)
+        signed = side * distance
+        unsettled = (distance + self._reach > gaps[:, -1]) & (count < len(self.triangles))
+        for i in np.flatnonzero(unsettled):
+            closest[i], normal[i], signed[i] = self.closest(points[i])
+        return closest, normal, signed
+
+    def heights(self, xy) -> np.ndarray:
+        """Height of the mesh's top above each point (n, 2) of the surface frame's x-y
+        plane [mm] (the highest triangle over it), −inf where no triangle is over it."""
+        xy = np.asarray(xy, dtype=float).reshape(-1, 2)
+        flat = self.triangles.copy()
+        flat[..., 2] = 0.0
+        tops = np.full(len(xy), -np.inf)
+        for i, point in enumerate(xy):
+            near = self._xy_tree.query_ball_point(point, self._xy_reach)
+            if not near:
+                continue
+            near = np.asarray(near)
+            weights = trimesh.triangles.points_to_barycentric(
+                flat[near], np.repeat([[point[0], point[1], 0.0]], len(near), axis=0))
+            inside = np.all(weights >= -1e-12, axis=1)
+            if inside.any():
+                z = np.einsum("ij,ij->i", weights[inside], self.triangles[near[inside], :, 2])
+                tops[i] = z.max()
+        return tops
+
+    def top_near_segment(self, start, end, radius: float) -> float:
+        """An upper bound of the mesh's height within ``radius`` [mm] (horizontally) of
+        the segment from ``start`` to ``end`` (x-y points of the surface frame): the
+        highest vertex of every triangle that may reach into that region (its centroid
+        within radius + its own horizontal size of the segment); −inf if none may."""
+        start, end = np.asarray(start, dtype=float), np.asarray(end, dtype=float)
+        centroids = self.triangles[..., :2].mean(axis=1)
+        along = end - start
+        length = float(along @ along)
+        share = np.clip((centroids - start) @ along / length, 0.0, 1.0) if length else 0.0
+        gap = np.linalg.norm(centroids - (start + np.multiply.outer(share, along)), axis=1)
+        near = gap <= radius + self._xy_reach
+        return float(self.triangles[near, :, 2].max()) if near.any() else -np.inf
+
+
+def frame_with_normal(normal) -> np.ndarray:
+    """A rotation matrix whose third column is the unit vector ``normal``: the rotation
+    of e_z onto it about e_z × normal (Rodrigues); the identity, exactly, for e_z."""
+    n = np.asarray(normal, dtype=float)
+    if n[2] <= -1.0 + 1e-12:  # opposite to e_z: half a turn about x
+        return np.diag([1.0, -1.0, -1.0])
+    k = np.array([-n[1], n[0], 0.0])  # e_z × n
+    cross = np.array([[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]])
+    return np.eye(3) + cross + cross @ cross / (1.0 + n[2])
+
+
+def read_mesh(path: str | Path, unit: str) -> MeshSurface:
+    """Read and check a mesh file (module docstring). MeshError says what is wrong and
+    what to do, naming the file."""
+    path = Path(path)
+    name = f"surface.mesh_file {str(path)!r}"
+    if unit not in MESH_UNITS:
+        raise MeshError(f"surface.mesh_unit {unit!r} is not one of {', '.join(MESH_UNITS)}")
+    if not path.is_file():
+        raise MeshError(f"{name} does not exist; give the path of an STL or OBJ file "
+                        "(relative to the case file)")
+    if path.suffix.lower() not in (".stl", ".obj"):
+        raise MeshError(f"{name} is not an STL or OBJ file (by its extension); export the "
+                        "surface as .stl or .obj")
+    try:
+        loaded = trimesh.load(path, force="mesh", process=True)
+    except Exception as err:  # trimesh raises many types for a bad file
+        # an ImportError is trimesh guessing a text encoding with an optional package
+        detail = ("" if isinstance(err, ImportError)
+                  else f" ({type(err).__name__}: {' '.join(str(err).split())[:120]})")
+        raise MeshError(f"{name} is not a readable STL or OBJ mesh{detail}") from None
+    if not isinstance(loaded, trimesh.Trimesh) or len(loaded.faces) == 0:
+        raise MeshError(f"{name} holds no triangles; export the surface as a triangle mesh")
+    if not loaded.is_winding_consistent:
+        raise MeshError(f"{name}: its triangles are not wound consistently, so the outside "
+                        "of the surface is undefined; repair the mesh (e.g. fix its normals) "
+                        "and export it again")
+    triangles = np.asarray(loaded.triangles, dtype=float) * MESH_UNITS[unit]
+    extent = float(np.max(np.ptp(triangles.reshape(-1, 3), axis=0)))
+    low, high = PLAUSIBLE_EXTENT
+    if not low <= extent <= high:
+        raise MeshError(f"{name} measures {extent:.4g} mm across with surface.mesh_unit = "
+                        f"{unit!r}, outside the {low:g} to {high:g} mm of a tooth surface: is "
+                        "the file in another unit? Set surface.mesh_unit to it")
+    return MeshSurface.from_triangles(triangles)
