@@ -9,9 +9,9 @@ Estimates (per run, internal units):
 - steps: end time / solver.step_size per solved system. The solver cuts steps where it
   must, so this is a lower bound of the real count (the default orthogonal run takes about
   four times as many for the whole head);
-- memory: the recorded node positions at the output interval, kept for every bristle
-  (3 doubles per node and row), times 3 for the copies made while the groups' results are
-  joined, plus the coordinates kept for the viewer.
+- memory: the recorded node positions and tip contact forces at the output interval, kept
+  for every bristle (3 doubles per node and per force, per row), times 3 for the copies
+  made while the groups' results are joined, plus the coordinates kept for the viewer.
 
 Resolution: the largest step must resolve the motion, or the solver steps over it (a
 20 s step on a 12 s slide period ran to the end with a peak force 9.4x the right one):
@@ -55,7 +55,7 @@ def estimate(case, bristles: int, end_time: float) -> WorkEstimate:
     """The work of ``case`` with ``bristles`` bristles and ``end_time`` [s]."""
     rows = math.floor(end_time / case.output.interval) + 1
     nodes = case.model.segments if case.model.kind == "dfm" else 1
-    memory = float(rows) * bristles * nodes * 3 * DOUBLE * COPIES
+    memory = float(rows) * bristles * (nodes + 1) * 3 * DOUBLE * COPIES
     if case.output.solution_file:
         coordinates = 6 + bristles * nodes * 7  # handle; Euler parameters: 7 per node
         memory += (math.floor(end_time / case.output.shape_interval) + 1) * coordinates * DOUBLE

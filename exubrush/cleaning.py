@@ -92,6 +92,27 @@ def contact_geometry(surface: Surface, centres: np.ndarray, radius: np.ndarray, 
             distance[nearest, rows].reshape(shape), parts.reshape(shape))
 
 
+def touching_geometry(surface: Surface, tip_position, tip_force, radius, mesh=None):
+    """:func:`contact_geometry` where the tips touch (contact force above
+    NO_CONTACT_FORCE) and nothing elsewhere (points and normals 0, distance r, part 0):
+    whether they touch, then points, normals, distances and parts, each (n_t, n_b, ...)."""
+    touching = np.linalg.norm(tip_force, axis=2) > NO_CONTACT_FORCE
+    radius = np.asarray(radius, dtype=float)
+    shape = touching.shape
+    points, normals = np.zeros((*shape, 3)), np.zeros((*shape, 3))
+    distances = np.broadcast_to(radius, shape).copy()
+    parts = np.zeros(shape, dtype=int)
+    if touching.any():
+        rows, columns = np.nonzero(touching)
+        found = contact_geometry(surface, np.asarray(tip_position)[rows, columns][:, None, :],
+                                 radius[columns][:, None], mesh)
+        points[rows, columns] = found[0][:, 0]
+        normals[rows, columns] = found[1][:, 0]
+        distances[rows, columns] = found[2][:, 0]
+        parts[rows, columns] = found[3][:, 0]
+    return touching, points, normals, distances, parts
+
+
 def _parts(surface: Surface, points: np.ndarray) -> np.ndarray:
     if surface.kind != "tooth-row":
         return np.zeros(len(points), dtype=int)
@@ -204,11 +225,11 @@ def cleaning_summary(surface: Surface, time, slider_position, tip_position, tip_
     radius = np.asarray(tip_radius, dtype=float)
     if not grid > 0.0:
         raise ValueError(f"the wiped-area grid must be positive, got {grid!r} mm")
-    points, normals, distances, parts = contact_geometry(surface, tip_position, radius, mesh)
+    touching, points, normals, distances, parts = touching_geometry(
+        surface, tip_position, tip_force, radius, mesh)
     half_width = patch_radius(radius, distances)
     force_local = np.asarray(tip_force) @ orientation(surface)  # rows: Rᵀ f
     normal_force = np.einsum("tbi,tbi->tb", force_local, normals)
-    touching = np.linalg.norm(tip_force, axis=2) > NO_CONTACT_FORCE
     names = part_names(surface)
     dt = np.gradient(time) if len(time) > 1 else np.zeros_like(time)
     summary = {
@@ -269,9 +290,8 @@ def footprint(surface: Surface, time, tip_position, tip_force, tip_radius, cell:
               mesh=None):
     """Contact time per cell of side ``cell`` [mm] in the surface frame's x-y plane
     [tip-seconds], over the run: (counts (n_x, n_y), x edges, y edges)."""
-    points, _, _, _ = contact_geometry(surface, tip_position,
-                                       np.asarray(tip_radius, dtype=float), mesh)
-    touching = np.linalg.norm(tip_force, axis=2) > NO_CONTACT_FORCE
+    touching, points, _, _, _ = touching_geometry(surface, tip_position, tip_force,
+                                                  tip_radius, mesh)
     dt = np.gradient(time) if len(time) > 1 else np.zeros_like(time)
     weights = np.broadcast_to(dt[:, None], touching.shape)[touching]
     x, y = points[touching][:, 0], points[touching][:, 1]
