@@ -15,7 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
-from exubrush.cleaning import cleaning_summary
+from exubrush.cleaning import cleaning_summary, part_names, touching_geometry
 from exubrush.files import atomic_file, write_csv
 from exubrush.mesh import MeshError, read_mesh
 from exubrush.metrics import friction_coefficient, travelled_distance
@@ -141,9 +141,15 @@ class Results:
         for name in ("tips.npz", "summary.json", "cleaning.png"):
             (directory / name).unlink(missing_ok=True)
         if summary is not None:
+            case = self.case()
+            touching, _, _, _, parts = touching_geometry(
+                case.surface, self.tip_position, self.tip_force,
+                [b.tip_radius for b in head_bristles(case.head)], self.surface_mesh())
             with atomic_file(directory / "tips.npz", "wb") as handle:
                 np.savez_compressed(handle, time=self.time, position=self.tip_position,
-                                    force=self.tip_force)
+                                    force=self.tip_force, in_contact=touching,
+                                    part=np.where(touching, parts, -1),
+                                    part_names=np.array(part_names(case.surface)))
             with atomic_file(directory / "summary.json", "w") as handle:
                 json.dump({"data_origin": self.metadata.get("data_origin", ""),
                            "cleaning": summary}, handle, indent=2)

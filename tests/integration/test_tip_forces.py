@@ -43,3 +43,48 @@ def test_a_run_on_a_tooth_row_writes_its_cleaning_summary(tmp_path):
     for stroke, stored in zip(recomputed, strokes, strict=True):
         assert stroke["interdental"]["max_depth_mm"] == stored["interdental"]["max_depth_mm"]
         assert stroke["wiped_area_mm2"] == pytest.approx(stored["wiped_area_mm2"], rel=1e-9)
+
+
+def test_tips_file_says_which_part_each_tip_touches(tmp_path):
+    results = simulate(load_case("interdental", [*SMALL, "motion.periods=0.3"]),
+                       progress=False)
+    results.save(tmp_path)
+    with np.load(tmp_path / "tips.npz") as tips:
+        names = list(tips["part_names"])
+        touching, part = tips["in_contact"], tips["part"]
+    assert names == ["top", "edge", "wall", "floor"]
+    assert np.array_equal(part >= 0, touching)
+    # the stored per-part contact times are these flags summed over time
+    summary = json.loads((tmp_path / "summary.json").read_text())["cleaning"]
+    dt = np.gradient(results.time)
+    for k, name in enumerate(names):
+        assert summary["contact_time_per_part_tip_s"][name] == pytest.approx(
+            float(np.sum(dt[:, None] * (part == k))), rel=1e-12, abs=1e-12)
+    assert summary["contact_time_per_part_tip_s"]["top"] > 0.0
+
+
+@pytest.mark.parametrize("surface", [
+    ["surface.kind='cylinder'"], ["surface.kind='sphere'"],
+    ["surface.kind='tooth-row'", "surface.yaw='30 deg'"]])
+def test_every_surface_has_graphics_for_the_viewer(surface):
+    from exubrush.prepared import prepare
+    from exubrush.scene import build_scene
+
+    prepared = prepare(load_case("orthogonal", [*SMALL, *surface]))
+    scene = build_scene(prepared, (0,), drawn=True)
+    ground = scene.mbs.GetObject(0)
+    assert ground["VgraphicsData"]  # the surface is drawn
+
+
+def test_a_mesh_surface_has_graphics_for_the_viewer(tmp_path):
+    import trimesh
+
+    from exubrush.prepared import prepare
+    from exubrush.scene import build_scene
+
+    trimesh.creation.icosphere(subdivisions=2, radius=4.0).export(tmp_path / "crown.stl")
+    prepared = prepare(load_case("orthogonal", [
+        *SMALL, "surface.kind='mesh'", f"surface.mesh_file='{tmp_path / 'crown.stl'}'"]))
+    scene = build_scene(prepared, (0,), drawn=True)
+    assert scene.mbs.GetObject(0)["VgraphicsData"]
+    assert len(scene.tangent_planes) == 1  # the tip reaches the crown: one moving frame
