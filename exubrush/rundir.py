@@ -32,13 +32,15 @@ from exubrush.files import atomic_file
 from exubrush.parameters.fields import to_plain
 from exubrush.prepared import PreparedCase
 from exubrush.provenance import code_identity
+from exubrush.results import RESULT_FILES as SAVED_FILES
 from exubrush.solution import GroupSolution
 from exubrush.solution_files import SOLUTION_FILE
 
 CHECKPOINT = ".checkpoint"
 CODE_FILE = "code.json"  # the exubrush version and commit that wrote the checkpoint
-# exubrush view writes its solution file beside the results (exubrush.viewer)
-RESULT_FILES = ("forces.csv", "run.json", "forces.png", "shapes.npz", SOLUTION_FILE)
+# what Results.save writes, run.json, and the solution file exubrush view writes beside
+# them (exubrush.viewer)
+RESULT_FILES = (*SAVED_FILES, "run.json", SOLUTION_FILE)
 
 
 NAME_LENGTH = 64  # characters of a case name kept in a default directory name

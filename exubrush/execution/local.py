@@ -16,6 +16,7 @@ import queue
 import signal
 import threading
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+from concurrent.futures.process import BrokenProcessPool
 
 from exubrush.execution import Executor
 from exubrush.execution.signals import signals_redirected
@@ -64,8 +65,15 @@ class ProcessExecutor(Executor):
             while pending:
                 done, pending = wait(pending, timeout=POLL, return_when=FIRST_COMPLETED)
                 for future in done:
-                    if not future.cancelled():
-                        solved(futures[future], future.result())
+                    if future.cancelled():
+                        continue
+                    try:
+                        result = future.result()
+                    except BrokenProcessPool:
+                        if stop.is_set():  # a worker the same SIGTERM reached before it
+                            continue  # could ignore it (still starting): a clean stop
+                        raise
+                    solved(futures[future], result)
                 _drain(updates, advance)
                 if stop.is_set():  # running solves return what they have at their next check
                     for future in pending:
