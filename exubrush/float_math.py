@@ -2,9 +2,10 @@
 
 Force laws that Exudyn also runs as symbolic (C++) user functions are written once against
 a small "math back end": an object providing ``sqrt``, ``abs``, ``sign``, ``min``, ``max``,
-``floor`` and ``IfThenElse``. :data:`FLOAT_MATH` evaluates them on floats, :data:`ARRAY_MATH`
-element-wise on numpy arrays (both branches of ``IfThenElse`` are computed there);
-``exudyn.symbolic`` records them into an expression tree.
+``floor``, ``square`` and ``IfThenElse``. :data:`FLOAT_MATH` evaluates them on floats,
+:data:`ARRAY_MATH` element-wise on numpy arrays (both branches of ``IfThenElse`` are
+computed there); exubrush.contact.exudyn_contact.SYMBOLIC_MATH records them into an Exudyn
+expression tree.
 """
 
 from __future__ import annotations
@@ -26,6 +27,7 @@ FLOAT_MATH = SimpleNamespace(
     min=min,
     max=max,
     floor=math.floor,
+    square=lambda x: x * x,  # inf past the float range, as a product (x**2 raises)
     IfThenElse=_float_if,
 )
 """Math back end for plain Python floats."""
@@ -37,6 +39,7 @@ ARRAY_MATH = SimpleNamespace(
     min=np.minimum,
     max=np.maximum,
     floor=np.floor,
+    square=np.square,
     IfThenElse=np.where,
 )
 """Math back end for numpy arrays, element-wise."""

@@ -98,8 +98,8 @@ def resolve(feature: Feature | Choice, m=FLOAT_MATH) -> Feature:
 def _round_feature(a, b, c, radius, m) -> Feature:
     """Outside of a ball (b given) or of a cylinder along the second axis (b None) of
     ``radius`` centred at the origin of (a, b, c)."""
-    # x**2 evaluates x once in Exudyn's expression tree, x * x twice
-    square = a**2 + c**2 if b is None else a**2 + b**2 + c**2
+    square = m.square(a) + m.square(c) if b is None else (
+        m.square(a) + m.square(b) + m.square(c))
     length = m.sqrt(square)
     inverse = 1.0 / m.max(length, _TINY)
     normal = (a * inverse, 0.0 if b is None else b * inverse, c * inverse)
@@ -142,7 +142,7 @@ def _tooth_feature(surface: Surface, u, z, m) -> Choice:
     def side(sign: float) -> Choice:
         a = (u if sign > 0 else -u) - (half - rho)
         wall = Feature((sign, 0.0, 0.0), (u if sign > 0 else -u) - half)
-        corner = m.sqrt(a**2 + b**2)
+        corner = m.sqrt(m.square(a) + m.square(b))
         # used only where a, b > 0 (the Choice below); the guard keeps numpy's evaluation
         # of every branch free of 0/0
         inverse = 1.0 / m.max(corner, _TINY)

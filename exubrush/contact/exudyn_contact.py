@@ -46,6 +46,8 @@ def _symbolic_if(condition, if_true, if_false):
 SYMBOLIC_MATH = SimpleNamespace(
     **{name: getattr(exu.symbolic, name) for name in ("sqrt", "abs", "sign", "min", "max",
                                                       "floor")},
+    # x**2 evaluates x once in Exudyn's expression tree, x * x twice
+    square=lambda x: x**2,
     IfThenElse=_symbolic_if,
 )
 """The math back end (exubrush.float_math) that records Exudyn symbolic expressions."""

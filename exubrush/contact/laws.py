@@ -78,7 +78,7 @@ def friction_per_speed(law: ContactLaw, slip_square, m=FLOAT_MATH):
     creeping = mu_s / vs * (1.5 - 0.5 / (vs * vs) * slip_square)
     speed = m.sqrt(m.max(slip_square, vs * vs))
     eta = m.min((speed - vs) / (vd - vs), 1.0)
-    sliding = (mu_s + (mu_d - mu_s) * eta**2 * (3.0 - 2.0 * eta)) / speed
+    sliding = (mu_s + (mu_d - mu_s) * m.square(eta) * (3.0 - 2.0 * eta)) / speed
     return m.IfThenElse(slip_square < vs * vs, creeping, sliding)
 
 
@@ -155,8 +155,7 @@ def sphere_feature_force(
     normal_speed = _sum(*(_product(velocity[i], normal[i]) for i in range(3)))
     slip = _tangential(contact_velocity, normal, normal_speed)
     force_n = normal_force(law, radius - distance, -normal_speed, m)
-    # c**2: one evaluation of c in Exudyn's tree, where c*c takes two
-    slip_square = _sum(*(0.0 if _is_number(c) and c == 0.0 else c**2 for c in slip))
+    slip_square = _sum(*(0.0 if _is_number(c) and c == 0.0 else m.square(c) for c in slip))
     scale = -friction_scale * force_n * friction_per_speed(law, slip_square, m)
     force = [_sum(_product(force_n, normal[i]), _product(scale, slip[i])) for i in range(3)]
     # (−r n) × F_t, F_t = scale · slip

@@ -196,3 +196,17 @@ def test_surface_law_sums_the_touched_features_only():
     chosen = sphere_surface_force(LAW, 0.4, [Choice(False, away, wall)], velocity, omega)
     np.testing.assert_allclose(
         chosen, sphere_feature_force(LAW, 0.4, wall.normal, 0.39, velocity, omega), rtol=1e-15)
+
+
+def test_a_diverged_state_gives_loads_not_an_exception():
+    # a diverging Newton iterate can hand the Python user function a huge state: the law
+    # must return numbers (Exudyn then cuts the step), never raise (x**2 of a float raises
+    # OverflowError where x * x gives inf)
+    from exubrush.parameters.case import Surface
+    from exubrush.surfaces import features
+
+    load = sphere_feature_force(LAW, 0.4, (0.6, 0.0, 0.8), 0.39, [1e200, 0.0, 0.0],
+                                [0.0, 0.0, 0.0])
+    assert len(load) == 6 and all(isinstance(c, float) for c in load)
+    far = features(Surface(kind="tooth-row"), (3.2, 0.0, 1e200), 0.4)
+    assert far  # no OverflowError from the geometry either
