@@ -27,6 +27,7 @@ Computed after a run from each tip's centre and contact force at the force inter
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -92,10 +93,33 @@ def contact_geometry(surface: Surface, centres: np.ndarray, radius: np.ndarray, 
             distance[nearest, rows].reshape(shape), parts.reshape(shape))
 
 
-def touching_geometry(surface: Surface, tip_position, tip_force, radius, mesh=None):
-    """:func:`contact_geometry` where the tips touch (contact force above
-    NO_CONTACT_FORCE) and nothing elsewhere (points and normals 0, distance r, part 0):
-    whether they touch, then points, normals, distances and parts, each (n_t, n_b, ...)."""
+@dataclass(frozen=True)
+class TipContacts:
+    """Where each tip touches, per sample (:func:`touching_geometry`); each (n_t, n_b, ...).
+
+    Attributes
+    ----------
+    touching : ndarray of bool
+        Contact force above :data:`NO_CONTACT_FORCE`.
+    points, normals : ndarray (..., 3)
+        Contact point [mm] and outward unit normal, surface frame (0 where not touching).
+    distances : ndarray
+        Signed distance of the tip's centre from the touched feature [mm] (r elsewhere).
+    parts : ndarray of int
+        Index into :func:`part_names` (0 where not touching).
+    """
+
+    touching: np.ndarray
+    points: np.ndarray
+    normals: np.ndarray
+    distances: np.ndarray
+    parts: np.ndarray
+
+
+def touching_geometry(surface: Surface, tip_position, tip_force, radius,
+                      mesh=None) -> TipContacts:
+    """:func:`contact_geometry` of the samples where the tips touch (the rest stays empty):
+    computed once per run, it serves the summary, tips.npz and the footprint."""
     touching = np.linalg.norm(tip_force, axis=2) > NO_CONTACT_FORCE
     radius = np.asarray(radius, dtype=float)
     shape = touching.shape
@@ -110,7 +134,13 @@ def touching_geometry(surface: Surface, tip_position, tip_force, radius, mesh=No
         normals[rows, columns] = found[1][:, 0]
         distances[rows, columns] = found[2][:, 0]
         parts[rows, columns] = found[3][:, 0]
-    return touching, points, normals, distances, parts
+    return TipContacts(touching, points, normals, distances, parts)
+
+
+def sample_durations(time) -> np.ndarray:
+    """The time each sample stands for [s] (np.gradient of the sample times)."""
+    time = np.asarray(time, dtype=float)
+    return np.gradient(time) if len(time) > 1 else np.zeros_like(time)
 
 
 def _parts(surface: Surface, points: np.ndarray) -> np.ndarray:
@@ -214,24 +244,27 @@ def gap_depths(surface: Surface, centres_local: np.ndarray, radius: np.ndarray):
 
 
 def cleaning_summary(surface: Surface, time, slider_position, tip_position, tip_force,
-                     tip_radius, grid: float = DEFAULT_GRID, mesh=None) -> dict:
+                     tip_radius, grid: float = DEFAULT_GRID, mesh=None,
+                     contacts: TipContacts | None = None) -> dict:
     """The cleaning metrics of a run (see module docstring) as plain JSON-ready values.
 
     ``tip_position``, ``tip_force``: (n_t, n_bristles, 3), head frame fixed to the surface
     [mm, N]; ``tip_radius``: (n_bristles,) [mm]; ``grid``: wiped-area cell side [mm];
-    ``mesh``: the surface's mesh if it is one.
+    ``mesh``: the surface's mesh if it is one; ``contacts``: their
+    :func:`touching_geometry`, if already computed.
     """
     time = np.asarray(time, dtype=float)
     radius = np.asarray(tip_radius, dtype=float)
     if not grid > 0.0:
         raise ValueError(f"the wiped-area grid must be positive, got {grid!r} mm")
-    touching, points, normals, distances, parts = touching_geometry(
-        surface, tip_position, tip_force, radius, mesh)
-    half_width = patch_radius(radius, distances)
+    if contacts is None:
+        contacts = touching_geometry(surface, tip_position, tip_force, radius, mesh)
+    touching, points, parts = contacts.touching, contacts.points, contacts.parts
+    half_width = patch_radius(radius, contacts.distances)
     force_local = np.asarray(tip_force) @ orientation(surface)  # rows: Rᵀ f
-    normal_force = np.einsum("tbi,tbi->tb", force_local, normals)
+    normal_force = np.einsum("tbi,tbi->tb", force_local, contacts.normals)
     names = part_names(surface)
-    dt = np.gradient(time) if len(time) > 1 else np.zeros_like(time)
+    dt = sample_durations(time)
     summary = {
         "surface": surface.kind,
         "grid_mm": grid,
@@ -286,15 +319,12 @@ def _interdental(depth: np.ndarray, gap: np.ndarray, inside: np.ndarray,
     }
 
 
-def footprint(surface: Surface, time, tip_position, tip_force, tip_radius, cell: float,
-              mesh=None):
+def footprint(time, contacts: TipContacts, cell: float):
     """Contact time per cell of side ``cell`` [mm] in the surface frame's x-y plane
     [tip-seconds], over the run: (counts (n_x, n_y), x edges, y edges)."""
-    touching, points, _, _, _ = touching_geometry(surface, tip_position, tip_force,
-                                                  tip_radius, mesh)
-    dt = np.gradient(time) if len(time) > 1 else np.zeros_like(time)
-    weights = np.broadcast_to(dt[:, None], touching.shape)[touching]
-    x, y = points[touching][:, 0], points[touching][:, 1]
+    touching = contacts.touching
+    weights = np.broadcast_to(sample_durations(time)[:, None], touching.shape)[touching]
+    x, y = contacts.points[touching][:, 0], contacts.points[touching][:, 1]
     if x.size == 0:
         x, y, weights = np.zeros(1), np.zeros(1), np.zeros(1)
     bins = [np.arange(np.floor(v.min() / cell) * cell, v.max() + 1.5 * cell, cell)

@@ -11,7 +11,7 @@ from matplotlib.figure import Figure
 
 from exubrush.cleaning import footprint, gap_depth_history
 from exubrush.files import atomic_file
-from exubrush.metrics import NO_CONTACT_FORCE, friction_coefficient, travelled_distance
+from exubrush.metrics import friction_coefficient, travelled_distance
 from exubrush.models.geometry import head_bristles
 
 
@@ -123,25 +123,24 @@ def _save(fig, directory, name) -> str:
     return name
 
 
-def plot_cleaning(results, summary: dict, target, mesh=None) -> None:
+def plot_cleaning(results, summary: dict, contacts, target) -> None:
     """Footprint of contact on the surface, tips in contact against time, on a tooth row
     the deepest tip in a gap against time (elsewhere the wiped area per stroke), and each
-    bristle's force share; PNG to ``target``."""
+    bristle's force share; PNG to ``target``. ``contacts``: the run's
+    exubrush.cleaning.TipContacts."""
     case = results.case()
     surface = case.surface
     radius = [b.tip_radius for b in head_bristles(case.head)]
     teeth = surface.kind == "tooth-row"
     fig, axes = figure(2, 2, figsize=(11, 8), squeeze=False)
-    counts, x_edges, y_edges = footprint(surface, results.time, results.tip_position,
-                                         results.tip_force, radius, cell=0.25, mesh=mesh)
+    counts, x_edges, y_edges = footprint(results.time, contacts, cell=0.25)
     image = axes[0][0].pcolormesh(x_edges, y_edges, counts.T, cmap="viridis")
     fig.colorbar(image, ax=axes[0][0], label="contact time per 0.25 mm cell [tip-s]")
     axes[0][0].set_aspect("equal")
     axes[0][0].set_xlabel("surface x [mm]")
     axes[0][0].set_ylabel("surface y [mm]")
     axes[0][0].set_title("footprint of the contact points", fontsize=9)
-    touching = (np.linalg.norm(results.tip_force, axis=2) > NO_CONTACT_FORCE).sum(axis=1)
-    axes[0][1].plot(results.time, touching, lw=0.8)
+    axes[0][1].plot(results.time, contacts.touching.sum(axis=1), lw=0.8)
     axes[0][1].set_ylabel("tips in contact")
     axes[0][1].set_xlabel("time [s]")
     if teeth:

@@ -9,13 +9,14 @@ inertia removed): ``normal_force`` is positive when the head presses on the surf
 
 from __future__ import annotations
 
+import functools
 import json
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-from exubrush.cleaning import cleaning_summary, part_names, touching_geometry
+from exubrush.cleaning import TipContacts, cleaning_summary, part_names, touching_geometry
 from exubrush.files import atomic_file, write_csv
 from exubrush.mesh import MeshError, read_mesh
 from exubrush.metrics import friction_coefficient, travelled_distance
@@ -87,19 +88,38 @@ class Results:
         }
         return {f"{name} [{unit}]": values[name] for name, unit in CSV_COLUMNS}
 
-    def cleaning(self) -> dict | None:
-        """The cleaning metrics of the run (exubrush.cleaning.cleaning_summary), None
-        without tip data."""
+    @functools.cached_property
+    def tip_contacts(self) -> TipContacts | None:
+        """Where each tip touched the surface (exubrush.cleaning.touching_geometry),
+        computed once; None without tip data or when the run's mesh file is gone."""
         if self.tip_position is None or self.tip_force is None or len(self.time) == 0:
             return None
         case = self.case()
-        radius = [b.tip_radius for b in head_bristles(case.head)]
         try:
             mesh = self.surface_mesh()
         except MeshError:  # the run's mesh file is gone or changed: no metrics
             return None
+        return touching_geometry(case.surface, self.tip_position, self.tip_force,
+                                 self._tip_radii(case), mesh)
+
+    @functools.cached_property
+    def _cleaning_summary(self) -> dict | None:
+        contacts = self.tip_contacts
+        if contacts is None:
+            return None
+        case = self.case()
         return cleaning_summary(case.surface, self.time, self.slider_position,
-                                self.tip_position, self.tip_force, radius, mesh=mesh)
+                                self.tip_position, self.tip_force, self._tip_radii(case),
+                                contacts=contacts)
+
+    def cleaning(self) -> dict | None:
+        """The cleaning metrics of the run (exubrush.cleaning.cleaning_summary), computed
+        once; None without tip data or when the run's mesh file is gone."""
+        return self._cleaning_summary
+
+    @staticmethod
+    def _tip_radii(case: Case) -> list[float]:
+        return [b.tip_radius for b in head_bristles(case.head)]
 
     def surface_mesh(self):
         """The run's surface mesh (exubrush.mesh.MeshSurface) read again from its file, or
@@ -137,24 +157,20 @@ class Results:
 
         with atomic_file(directory / "forces.png", "wb") as handle:
             plot_forces(self, handle)
-        summary = self.cleaning()
+        summary, contacts = self.cleaning(), self.tip_contacts
         for name in ("tips.npz", "summary.json", "cleaning.png"):
             (directory / name).unlink(missing_ok=True)
         if summary is not None:
-            case = self.case()
-            touching, _, _, _, parts = touching_geometry(
-                case.surface, self.tip_position, self.tip_force,
-                [b.tip_radius for b in head_bristles(case.head)], self.surface_mesh())
             with atomic_file(directory / "tips.npz", "wb") as handle:
                 np.savez_compressed(handle, time=self.time, position=self.tip_position,
-                                    force=self.tip_force, in_contact=touching,
-                                    part=np.where(touching, parts, -1),
-                                    part_names=np.array(part_names(case.surface)))
+                                    force=self.tip_force, in_contact=contacts.touching,
+                                    part=np.where(contacts.touching, contacts.parts, -1),
+                                    part_names=np.array(part_names(self.case().surface)))
             with atomic_file(directory / "summary.json", "w") as handle:
                 json.dump({"data_origin": self.metadata.get("data_origin", ""),
                            "cleaning": summary}, handle, indent=2)
             with atomic_file(directory / "cleaning.png", "wb") as handle:
-                plot_cleaning(self, summary, handle, self.surface_mesh())
+                plot_cleaning(self, summary, contacts, handle)
         self._save_metadata(directory)
         return directory
 
