@@ -21,13 +21,20 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
-import trimesh
 from scipy.spatial import cKDTree
 
 # mm per unit of a mesh file
 MESH_UNITS = {"mm": 1.0, "cm": 10.0, "m": 1000.0, "um": 1e-3, "in": 25.4}
 # a mesh whose extent in mm falls outside this range is almost surely in another unit
 PLAUSIBLE_EXTENT = (0.5, 500.0)  # mm
+
+
+def _trimesh():
+    """trimesh, imported at first use: a process that brushes no mesh does not pay its
+    import (about 80 ms, in the main process and every worker)."""
+    import trimesh
+
+    return trimesh
 
 
 class MeshError(ValueError):
@@ -58,7 +65,7 @@ class MeshSurface:
         """A mesh surface from its triangles (n, 3, 3) [mm], shifted so its top is z = 0."""
         triangles = np.array(triangles, dtype=float)
         triangles[..., 2] -= triangles[..., 2].max()
-        normals = trimesh.triangles.normals(triangles)[0]
+        normals = _trimesh().triangles.normals(triangles)[0]
         centroids = triangles.mean(axis=1)
         reach = float(np.max(np.linalg.norm(triangles - centroids[:, None, :], axis=2)))
         xy_reach = float(np.max(np.linalg.norm(
@@ -68,33 +75,20 @@ class MeshSurface:
 
     def closest(self, point) -> tuple[np.ndarray, np.ndarray, float]:
         """Closest point on the mesh to ``point`` (surface frame) [mm], the outward normal
-        of the contact there and the signed distance [mm] (negative inside).
-
-        The normal is the direction from the closest point to the point where that is
-        defined and consistent with the nearest face's outward side (outside a face's
-        interior: edges and vertices turn it smoothly); otherwise the face's normal.
-        """
+        of the contact there and the signed distance [mm] (negative inside); the normal as
+        :meth:`_contact_normals` gives it."""
         point = np.asarray(point, dtype=float)
         # a centroid lies on its triangle: the nearest one bounds the distance, and every
         # triangle with a closer point has its centroid within that bound + R
         bound, _ = self._tree.query(point, k=1)
         found = np.asarray(self._tree.query_ball_point(point, bound + self._reach + 1e-12))
-        nearest = trimesh.triangles.closest_point(self.triangles[found],
+        nearest = _trimesh().triangles.closest_point(self.triangles[found],
                                                   np.repeat(point[None], len(found), axis=0))
         distances = np.linalg.norm(nearest - point, axis=1)
         best = int(np.argmin(distances))
-        face_normal = self.normals[found[best]]
-        offset = point - nearest[best]
-        distance = float(distances[best])
-        side = 1.0 if offset @ face_normal >= 0.0 else -1.0
-        normal = face_normal
-        if distance > 1e-9 * max(1.0, self._reach):
-            direction = side * offset / distance
-            # over a face's interior the direction is its normal up to rounding: keep the
-            # face's exact normal; beyond an edge or a vertex it turns with the point
-            if direction @ face_normal < 1.0 - 1e-9:
-                normal = direction
-        return nearest[best], normal, side * distance
+        normal, signed = self._contact_normals(point[None], nearest[best][None],
+                                               distances[best:best + 1], found[best:best + 1])
+        return nearest[best], normal[0], float(signed[0])
 
     def closest_many(self, points) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """:meth:`closest` of many points (n, 3) at once: closest points, normals, signed
@@ -104,7 +98,7 @@ class MeshSurface:
         count = min(8, len(self.triangles))
         gaps, found = self._tree.query(points, k=count)
         gaps, found = gaps.reshape(len(points), -1), found.reshape(len(points), -1)
-        nearest = trimesh.triangles.closest_point(
+        nearest = _trimesh().triangles.closest_point(
             self.triangles[found.ravel()], np.repeat(points, count, axis=0)
         ).reshape(len(points), count, 3)
         distances = np.linalg.norm(nearest - points[:, None, :], axis=2)
@@ -112,18 +106,27 @@ class MeshSurface:
         rows = np.arange(len(points))
         closest = nearest[rows, best]
         distance = distances[rows, best]
-        face_normal = self.normals[found[rows, best]]
+        normal, signed = self._contact_normals(points, closest, distance, found[rows, best])
+        unsettled = (distance + self._reach > gaps[:, -1]) & (count < len(self.triangles))
+        for i in np.flatnonzero(unsettled):
+            closest[i], normal[i], signed[i] = self.closest(points[i])
+        return closest, normal, signed
+
+    def _contact_normals(self, points, closest, distance, faces):
+        """Outward normals of the contacts and signed distances of ``points`` (n, 3) whose
+        closest mesh points ``closest`` at ``distance`` lie on triangles ``faces``.
+
+        The sign is the side of the face the point is on. Over a face's interior the
+        direction from the closest point is the face's normal up to rounding: the face's
+        exact normal is kept; beyond an edge or a vertex the normal turns with the point.
+        """
+        face_normal = self.normals[faces]
         offset = points - closest
         side = np.where(np.einsum("ij,ij->i", offset, face_normal) >= 0.0, 1.0, -1.0)
         tiny = distance <= 1e-9 * max(1.0, self._reach)
         direction = side[:, None] * offset / np.maximum(distance, 1e-300)[:, None]
         on_face = tiny | (np.einsum("ij,ij->i", direction, face_normal) >= 1.0 - 1e-9)
-        normal = np.where(on_face[:, None], face_normal, direction)
-        signed = side * distance
-        unsettled = (distance + self._reach > gaps[:, -1]) & (count < len(self.triangles))
-        for i in np.flatnonzero(unsettled):
-            closest[i], normal[i], signed[i] = self.closest(points[i])
-        return closest, normal, signed
+        return np.where(on_face[:, None], face_normal, direction), side * distance
 
     def heights(self, xy) -> np.ndarray:
         """Height of the mesh's top above each point (n, 2) of the surface frame's x-y
@@ -137,7 +140,7 @@ class MeshSurface:
             if not near:
                 continue
             near = np.asarray(near)
-            weights = trimesh.triangles.points_to_barycentric(
+            weights = _trimesh().triangles.points_to_barycentric(
                 flat[near], np.repeat([[point[0], point[1], 0.0]], len(near), axis=0))
             inside = np.all(weights >= -1e-12, axis=1)
             if inside.any():
@@ -184,6 +187,7 @@ def read_mesh(path: str | Path, unit: str) -> MeshSurface:
     if path.suffix.lower() not in (".stl", ".obj"):
         raise MeshError(f"{name} is not an STL or OBJ file (by its extension); export the "
                         "surface as .stl or .obj")
+    trimesh = _trimesh()
     try:
         loaded = trimesh.load(path, force="mesh", process=True)
     except Exception as err:  # trimesh raises many types for a bad file
