@@ -1,7 +1,7 @@
 """Tip-sphere contact with the surface as an Exudyn connector with a user function.
 
-Each tip gets an ``ObjectConnectorRigidBodySpringDamper`` from a ground marker at the
-surface frame's origin (its top; the frame turned by ``rotationMarker0``) to the tip body's
+Each tip gets an ``ObjectConnectorRigidBodySpringDamper`` from a ground marker in the
+surface frame (at its top, turned by ``surface.yaw``; :func:`surface_marker`) to the tip body's
 node at the sphere centre, in the non-intrinsic formulation: Exudyn then hands the user
 function the centre's position, velocity and angular velocity in the surface frame, applies
 the returned force at the sphere centre and the returned torque to the tip body, both with
