@@ -202,16 +202,11 @@ def _tangent_plane_refresh(mesh, surface, planes):
     plane's law (docs/surfaces.md)."""
     turn = orientation(surface)
     origin = np.array([surface.x, surface.y, 0.0])
-    current = {}  # marker -> (normal, n·point) of the plane it holds
 
     def refresh(mbs, t):
         for node, marker in planes:
             centre = np.asarray(mbs.GetNodeOutput(node, exu.OutputVariableType.Position))
             point, normal, _ = mesh.closest(turn.T @ (centre - origin))
-            plane = (tuple(normal), float(normal @ point))
-            if current.get(marker) == plane:
-                continue  # the same plane (a flat face): Exudyn's system stays untouched
-            current[marker] = plane
             frame = exu.HT(rotation=(turn @ frame_with_normal(normal)).tolist(),
                            translation=(origin + turn @ point).tolist())
             mbs.SetMarkerParameter(marker, "localHT", frame)
