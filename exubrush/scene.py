@@ -25,6 +25,7 @@ from exubrush.contact.exudyn_contact import (
 )
 from exubrush.contact.laws import builtin_contact_parameters
 from exubrush.mesh import frame_with_normal
+from exubrush.models.assembly import rigid_marker
 from exubrush.models.dfm import add_dfm_bristle
 from exubrush.models.geometry import BristleGeometry
 from exubrush.models.prb import add_prb_bristle, stub_graphics
@@ -176,9 +177,8 @@ def _add_contact(scene: Scene, prepared: PreparedCase, surface_marker_number, ti
     law_surface = case.surface
     if case.surface.kind == "mesh":  # the plane law in a frame on the tangent plane
         law_surface = None
-        surface_marker_number = scene.mbs.AddMarker(eii.MarkerBodyRigid(
-            bodyNumber=scene.ground, localHT=exu.HT(rotation=np.eye(3).tolist(),
-                                                     translation=[0.0, 0.0, -1e3])))
+        # far below until the first step puts it on the tangent plane
+        surface_marker_number = rigid_marker(scene.mbs, scene.ground, [0.0, 0.0, -1e3])
         scene.tangent_planes.append((tip_node, surface_marker_number))
     key = (bristle.tip_radius, law_surface is None)
     if key not in laws:

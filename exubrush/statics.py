@@ -13,6 +13,7 @@ from exubrush.contact.exudyn_contact import (
     contact_user_function,
     surface_marker,
 )
+from exubrush.mesh import frame_with_normal
 from exubrush.models.assembly import rigid_marker
 from exubrush.models.dfm import add_dfm_bristle
 from exubrush.models.geometry import BristleGeometry
@@ -107,23 +108,17 @@ def sphere_pressed_on_surface(surface: Surface, law: ContactLaw, radius: float, 
     """
     anchor = np.asarray(anchor, dtype=float)
     axis = np.asarray(direction, dtype=float)
-    helper = np.array([0.0, 0.0, 1.0]) if abs(axis[2]) < 0.9 else np.array([1.0, 0.0, 0.0])
-    second = np.cross(helper, axis)
-    second /= np.linalg.norm(second)
-    frame = np.column_stack([axis, second, np.cross(axis, second)]).tolist()
+    frame = frame_with_normal(axis)  # its z along the line
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
     ground = mbs.AddObject(eii.ObjectGround())
     body = mbs.CreateRigidBody(referencePosition=(anchor + (radius - 1e-3) * axis).tolist(),
                                inertia=InertiaSphere(1e-9, radius), gravity=[0, 0, 0],
                                show=False, returnDict=True)
-    held = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=ground,
-                                             localHT=exu.HT(rotation=frame,
-                                                            translation=anchor.tolist())))
-    moving = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=body["bodyNumber"],
-                                               localHT=exu.HT(rotation=frame)))
+    held = rigid_marker(mbs, ground, anchor, frame)
+    moving = rigid_marker(mbs, body["bodyNumber"], [0.0, 0.0, 0.0], frame)
     mbs.AddObject(eii.ObjectJointGeneric(markerNumbers=[held, moving],
-                                         constrainedAxes=[0, 1, 1, 1, 1, 1],
+                                         constrainedAxes=[1, 1, 0, 1, 1, 1],
                                          visualization=eii.VObjectJointGeneric(show=False)))
     function = contact_user_function(mbs, law, radius, surface=surface)
     add_tip_contact(mbs, surface_marker(mbs, ground, surface), body["bodyNumber"], function)

@@ -28,6 +28,7 @@ from exudyn.advancedUtilities import CreateSymbolicUserFunction
 
 from exubrush.contact.laws import cubic_step, sphere_plane_force, sphere_surface_force
 from exubrush.float_math import FLOAT_MATH
+from exubrush.models.assembly import rigid_marker
 from exubrush.parameters.case import ContactLaw, Surface
 from exubrush.surfaces import features, orientation
 
@@ -102,10 +103,9 @@ def contact_user_function(
 def surface_marker(mbs, ground, surface: Surface | None):
     """A marker on ``ground`` in the surface frame (the plane's: the head frame); a
     connector from it sees the tip in that frame."""
-    if surface is None or (surface.x, surface.y, surface.yaw) == (0.0, 0.0, 0.0):
-        return mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=ground, localPosition=[0, 0, 0]))
-    frame = exu.HT(rotation=orientation(surface).tolist(), translation=[surface.x, surface.y, 0.0])
-    return mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=ground, localHT=frame))
+    if surface is None:
+        return rigid_marker(mbs, ground, [0.0, 0.0, 0.0])
+    return rigid_marker(mbs, ground, [surface.x, surface.y, 0.0], orientation(surface))
 
 
 def add_tip_contact(mbs, surface_marker_number, tip_body, user_function):
