@@ -78,7 +78,7 @@ def run_metrics(results) -> dict[str, float]:
 def _cleaning_metrics(results) -> dict[str, float]:
     """Means over the whole strokes of the run's cleaning summary (exubrush.cleaning):
     wiped area, force-share spread and, on a tooth row, the deepest tip in a gap."""
-    summary = results.cleaning() if results.tip_position is not None else None
+    summary = results.cleaning()
     whole = [s for s in summary["strokes"] if s["whole"]] if summary else []
     if not whole:
         return {}
