@@ -7,7 +7,8 @@ import numpy as np
 import pytest
 from scipy.spatial import cKDTree
 
-from exubrush.float_math import ARRAY_MATH, FLOAT_MATH
+from exubrush.cleaning import contact_geometry
+from exubrush.float_math import FLOAT_MATH
 from exubrush.parameters.case import Surface
 from exubrush.surfaces import (
     Choice,
@@ -62,15 +63,11 @@ def _nearest(samples: np.ndarray, points: np.ndarray):
 
 
 def _closest_feature(surface: Surface, points3: np.ndarray, radius: float = 0.4):
-    """Signed distance and normal of the nearest feature at each point (array math)."""
-    found = [resolve(f, ARRAY_MATH)
-             for f in features(surface, points3.T, radius, ARRAY_MATH)]
-    distances = np.stack([np.broadcast_to(f.distance, points3.shape[:1]) for f in found])
-    normals = np.stack([np.stack([np.broadcast_to(c, points3.shape[:1]) for c in f.normal],
-                                 axis=1) for f in found])
-    which = np.argmin(distances, axis=0)
-    rows = np.arange(points3.shape[0])
-    return distances[which, rows], normals[which, rows]
+    """Signed distance and normal of the nearest feature at each point (unplaced surfaces:
+    the surface frame is the head frame), as the cleaning metrics find them."""
+    _, normals, distances, _ = contact_geometry(surface, points3[:, None, :],
+                                                np.array([radius]))
+    return distances[:, 0], normals[:, 0]
 
 
 def _outside_profile(surface: Surface, xz: np.ndarray) -> np.ndarray:
