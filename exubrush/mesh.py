@@ -181,9 +181,11 @@ def read_mesh(path: str | Path, unit: str) -> MeshSurface:
     name = f"surface.mesh_file {str(path)!r}"
     if unit not in MESH_UNITS:
         raise MeshError(f"surface.mesh_unit {unit!r} is not one of {', '.join(MESH_UNITS)}")
-    if not path.is_file():
+    if not path.exists():
         raise MeshError(f"{name} does not exist; give the path of an STL or OBJ file "
                         "(relative to the case file)")
+    if not path.is_file():
+        raise MeshError(f"{name} is not a file; give the path of an STL or OBJ file")
     if path.suffix.lower() not in (".stl", ".obj"):
         raise MeshError(f"{name} is not an STL or OBJ file (by its extension); export the "
                         "surface as .stl or .obj")

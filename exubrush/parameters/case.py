@@ -176,7 +176,9 @@ class Surface(Parameters):
     """
 
     kind: str = param("plane", "surface shape", "text", choices=SURFACE_KINDS)
-    radius: float = param(4.0, "cylinder, sphere: radius", "mm", above=0.0)
+    # below 1 km: the distance √(x² + (z+R)²) − R keeps the µm of a contact's depth (its
+    # rounding, R · 2e-16, grows with R; at R = 1e12 mm a run failed on it): use a plane
+    radius: float = param(4.0, "cylinder, sphere: radius", "mm", above=0.0, below=1e6)
     tooth_width: float = param(7.0, "tooth-row: width of a tooth's crown along the row", "mm",
                                above=0.0)
     gap_width: float = param(1.0, "tooth-row: width of an interdental gap", "mm", above=0.0)

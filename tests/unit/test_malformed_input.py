@@ -53,6 +53,7 @@ MALFORMED = [
     ("set", ["surface.kind='tooth-row'", "surface.gap_depth='0.2 mm'"],
      "edge_radius (0.5 mm) must not exceed gap_depth (0.2 mm)"),
     ("set", ["surface.radius='-3 mm'"], "surface.radius: -3 mm must be > 0 mm"),
+    ("set", ["surface.radius='1e12 mm'"], "surface.radius: 1e12 mm must be < 1e+06 mm"),
     ("set", ["surface.kind='cylinder'", "contact.backend='exudyn-builtin'"],
      "contact.backend 'exudyn-builtin' brushes a plane only"),
     ("set", ["surface.kind='sphere'", "surface.x='60 mm'"],

@@ -104,6 +104,8 @@ def test_bad_mesh_input_is_refused_in_one_line(tmp_path, sphere_file):
     trimesh.Trimesh(box.vertices, faces, process=False).export(flipped)
     cases = [
         ((missing,), "does not exist"),
+        ((tmp_path,), "is not a file"),
+        ((sphere_file / "under.stl",), "does not exist"),  # a path under a plain file
         ((garbage,), "is not a readable STL or OBJ mesh"),
         ((binary,), "is not a readable STL or OBJ mesh"),
         ((text,), "holds no triangles"),
