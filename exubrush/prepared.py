@@ -132,7 +132,10 @@ def prepare(case: Case) -> PreparedCase:
         motion, no bristle can reach the surface or the slide CSV cannot be read.
     """
     _refuse(over_size(case, case.head.count))
-    bristles = tuple(head_bristles(case.head))
+    try:
+        bristles = tuple(head_bristles(case.head))
+    except ValueError as err:  # filaments that do not fit in their tuft
+        raise ParameterError(str(err)) from None
     try:
         motion, height = head_motion(case, bristles)
     except ValueError as err:
@@ -165,7 +168,8 @@ def prepare(case: Case) -> PreparedCase:
         groups=bristle_groups(case, len(bristles)),
         work=work,
         inputs=input_digests(motion, mesh),
-        warnings=tuple(motion_warnings(case, motion)),
+        warnings=tuple(motion_warnings(case, motion)) + tuple(
+            unreachable_tufts(case, bristles, reaching)),
         reaching=reaching,
         mesh=mesh,
     )
@@ -215,6 +219,19 @@ def surface_reach(case: Case, bristles, motion: HeadMotion, mesh: MeshSurface | 
             top = mesh.top_near_segment(ends[0, :2], ends[1, :2], reach)
         reaching.append(bool(distance - reach < top))
     return tuple(reaching)
+
+
+def unreachable_tufts(case: Case, bristles, reaching: tuple[bool, ...]) -> list[str]:
+    """A warning for each tuft none of whose filaments can reach the surface (they are
+    built, but stay off the surface for the whole run)."""
+    names = case.head.tuft_names()
+    reaches = [False] * len(names)
+    for bristle, reaching_tip in zip(bristles, reaching, strict=True):
+        if bristle.tuft is not None:
+            reaches[bristle.tuft] |= reaching_tip
+    return [f"head: {name} cannot reach the surface at motion.interaction_distance = "
+            f"{case.motion.interaction_distance:g} mm: its filaments never touch it"
+            for name, reached in zip(names, reaches, strict=True) if not reached]
 
 
 def _refuse(problems: list[str]) -> None:

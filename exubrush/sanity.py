@@ -21,9 +21,8 @@ def static_force_limits(case: Case, bristles: Sequence[BristleGeometry]) -> tupl
     """E·A·δ/l of each bristle [N]: its force straight and fully compressed (0 if it cannot
     reach the surface)."""
     d = case.motion.interaction_distance
-    E = case.head.material.youngs_modulus
-    return tuple(E * b.section.area * (b.length + b.tip_radius - d) / b.length
-                 if can_reach(b, d) else 0.0 for b in bristles)
+    return tuple(b.material.youngs_modulus * b.section.area * (b.length + b.tip_radius - d)
+                 / b.length if can_reach(b, d) else 0.0 for b in bristles)
 
 
 def normal_force_bound(limits: Sequence[float]) -> float:

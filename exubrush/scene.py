@@ -168,7 +168,7 @@ def _add_contact(scene: Scene, prepared: PreparedCase, surface_marker_number, ti
     if case.contact.backend == "exudyn-builtin":
         parameters = builtin_contact_parameters(
             case.contact,
-            buckling_load(bristle.section, case.head.material.youngs_modulus, bristle.length),
+            buckling_load(bristle.section, bristle.material.youngs_modulus, bristle.length),
         )
         if window is not None:
             parameters["dynamicFriction"] = 0.0  # blended in by a step hook
@@ -262,13 +262,12 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
     surface = surface_marker(mbs, ground, case.surface)
     laws = {}
     origin = (0.0, 0.0, prepared.start_height)
-    material = case.head.material
     for index, bristle in enumerate(bristles):
         if case.model.kind == "dfm":
-            items = add_dfm_bristle(mbs, handle["bodyNumber"], bristle, material,
+            items = add_dfm_bristle(mbs, handle["bodyNumber"], bristle, bristle.material,
                                     case.model.segments, origin, drawn, case.model.rotation)
         else:
-            items = add_prb_bristle(mbs, handle["bodyNumber"], bristle, material, prb.gamma,
+            items = add_prb_bristle(mbs, handle["bodyNumber"], bristle, bristle.material, prb.gamma,
                                     prb.stiffness_coefficient, origin, drawn,
                                     case.model.rotation, case.model.prb_link)
         scene.keep_alive.extend(items.user_functions)

@@ -40,31 +40,11 @@ def read_unit_table(path: str | Path, columns: dict[str, str], what: str) -> dic
     """
     from exubrush.units import UnitError, to_internal
 
-    path = Path(path)
     name = f"{what} {str(path)!r}"
-    if not path.exists():
-        broken = " (a link to nothing)" if path.is_symlink() else ""
-        raise ValueError(f"{name} does not exist{broken}")
-    if not path.is_file():
-        raise ValueError(f"{name} is not a file")
-    try:
-        with path.open(newline="", encoding="utf-8") as handle:
-            rows = [
-                (line, row)
-                for line, row in enumerate(csv.reader(handle), start=1)
-                if any(cell.strip() for cell in row) and not row[0].lstrip().startswith("#")
-            ]
-    except UnicodeDecodeError as err:
-        raise ValueError(f"{name} is not UTF-8 text (byte {err.start})") from None
-    except (OSError, csv.Error) as err:
-        raise ValueError(f"{name} cannot be read ({getattr(err, 'strerror', None) or err})"
-                         ) from None
+    rows = read_rows(path, what)
     if len(rows) < 3:
         raise ValueError(f"{name} needs a header and at least two rows, found {len(rows)} lines")
-    header = {}
-    for index, cell in enumerate(rows[0][1]):
-        label, _, unit = cell.strip().partition("[")
-        header[label.strip()] = (index, unit.rstrip("]").strip())
+    header = {label: (index, unit) for index, (label, unit) in enumerate(split_header(rows[0][1]))}
     data = {}
     for label, target in columns.items():
         if label not in header:
@@ -87,6 +67,45 @@ def read_unit_table(path: str | Path, columns: dict[str, str], what: str) -> dic
                 ) from None
         data[label] = np.array(values) * factor
     return data
+
+
+def read_rows(path: str | Path, what: str) -> list[tuple[int, list[str]]]:
+    """(line number, cells) of every row of a CSV file that is neither blank nor a ``#``
+    comment, the header first.
+
+    Raises
+    ------
+    ValueError
+        Naming the file: missing, not a file, not UTF-8 text or unreadable.
+    """
+    path = Path(path)
+    name = f"{what} {str(path)!r}"
+    if not path.exists():
+        broken = " (a link to nothing)" if path.is_symlink() else ""
+        raise ValueError(f"{name} does not exist{broken}")
+    if not path.is_file():
+        raise ValueError(f"{name} is not a file")
+    try:
+        with path.open(newline="", encoding="utf-8") as handle:
+            return [
+                (line, row)
+                for line, row in enumerate(csv.reader(handle), start=1)
+                if any(cell.strip() for cell in row) and not row[0].lstrip().startswith("#")
+            ]
+    except UnicodeDecodeError as err:
+        raise ValueError(f"{name} is not UTF-8 text (byte {err.start})") from None
+    except (OSError, csv.Error) as err:
+        raise ValueError(f"{name} cannot be read ({getattr(err, 'strerror', None) or err})"
+                         ) from None
+
+
+def split_header(cells: list[str]) -> list[tuple[str, str]]:
+    """(label, unit) of each header cell ``label [unit]``; the unit is "" if none is given."""
+    header = []
+    for cell in cells:
+        label, _, unit = cell.strip().partition("[")
+        header.append((label.strip(), unit.rstrip("]").strip()))
+    return header
 
 
 def check_time_axis(times: np.ndarray, *values: np.ndarray) -> None:

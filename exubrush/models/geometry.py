@@ -14,8 +14,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from exubrush.models.packing import PackingError, filament_offsets
 from exubrush.models.sections import SectionProperties, section_properties
-from exubrush.parameters.case import BristleEntry, Head
+from exubrush.parameters.case import BristleEntry, Head, Material
 
 # bristle frame (x root->tip, y along the head, z = x × y) in the head frame, untilted
 UPRIGHT_FRAME = np.array([[0.0, 1.0, 0.0], [0.0, 0.0, -1.0], [-1.0, 0.0, 0.0]])
@@ -47,6 +48,11 @@ class BristleGeometry:
         Section extents along the bristle's y and z [mm] (for inertia and drawing).
     shape : str
         Section shape name.
+    material : Material
+        The bristle's material (the head's, or its tuft's).
+    tuft : int or None
+        Index of the tuft in ``head.tufts`` the bristle is a filament of (None outside a
+        tuft layout).
     """
 
     root: np.ndarray
@@ -57,6 +63,8 @@ class BristleGeometry:
     width: float
     height: float
     shape: str
+    material: Material = Material()
+    tuft: int | None = None
 
     def point(self, s: float) -> np.ndarray:
         """Head-frame position of the undeformed centreline at arc length ``s`` [mm]."""
@@ -73,14 +81,17 @@ def can_reach(bristle: BristleGeometry, interaction_distance: float) -> bool:
     return interaction_distance < bristle.length + bristle.tip_radius
 
 
-def _entries(head: Head) -> list[BristleEntry]:
+def _entries(head: Head) -> list[tuple[BristleEntry, Material, int | None]]:
+    """(entry, material, tuft index) of every bristle, in order."""
+    if head.layout == "tufts":
+        return _filaments(head)
     if head.layout == "list":
-        return list(head.bristles)
+        return [(entry, head.material, None) for entry in head.bristles]
     shape = head.bristle
     entries = []
     for i in range(head.rows):
         for j in range(head.columns):
-            entries.append(
+            entries.append((
                 BristleEntry(
                     x=(j - (head.columns - 1) / 2.0) * head.pitch_along,
                     y=(i - (head.rows - 1) / 2.0) * head.pitch_across,
@@ -89,16 +100,46 @@ def _entries(head: Head) -> list[BristleEntry]:
                     width=shape.width,
                     height=shape.height,
                     tip_radius=shape.tip_radius,
-                )
-            )
+                ), head.material, None))
+    return entries
+
+
+def _filaments(head: Head) -> list[tuple[BristleEntry, Material, int | None]]:
+    """Every filament of every tuft, its root from exubrush.models.packing.
+
+    Raises
+    ------
+    ValueError
+        Naming the tuft whose filaments do not fit in it.
+    """
+    rng = np.random.default_rng([head.seed, 1])  # apart from the root tilts' stream
+    entries = []
+    for index, (name, tuft) in enumerate(zip(head.tuft_names(), head.tufts, strict=True)):
+        try:
+            offsets = filament_offsets(tuft.filaments, tuft.filament_diameter, tuft.diameter,
+                                       tuft.packing, rng)
+        except PackingError as err:
+            raise ValueError(f"head: {name}: {err}") from None
+        material = head.tuft_material(tuft)
+        for dx, dy in offsets:
+            entries.append((BristleEntry(
+                x=tuft.x + dx, y=tuft.y + dy, tilt_x=tuft.tilt_x, tilt_y=tuft.tilt_y,
+                length=tuft.length, section=tuft.section, width=tuft.width,
+                height=tuft.height, tip_radius=tuft.tip_radius), material, index))
     return entries
 
 
 def head_bristles(head: Head) -> list[BristleGeometry]:
-    """Resolve the head's layout into bristle geometries, perturbations included."""
+    """Resolve the head's layout into bristle geometries, perturbations included.
+
+    Raises
+    ------
+    ValueError
+        If a tuft's filaments do not fit in it (the message names the tuft).
+    """
     rng = np.random.default_rng(head.seed)
     bristles = []
-    for entry in _entries(head):
+    for entry, material, tuft in _entries(head):
         frame = (
             rotation_about([1.0, 0.0, 0.0], entry.tilt_x)
             @ rotation_about([0.0, 1.0, 0.0], entry.tilt_y)
@@ -118,6 +159,8 @@ def head_bristles(head: Head) -> list[BristleGeometry]:
                 width=entry.width,
                 height=entry.height,
                 shape=entry.section,
+                material=material,
+                tuft=tuft,
             )
         )
     return bristles

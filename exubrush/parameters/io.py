@@ -19,6 +19,7 @@ from exubrush.parameters.fields import (
     parse_override,
     to_plain,
 )
+from exubrush.parameters.tuft_table import read_tuft_table
 
 
 def case_data(case: str) -> dict:
@@ -61,6 +62,11 @@ def load_case(case: str, overrides: list[str] | tuple[str, ...] = ()) -> Case:
         apply_override(data, Case, key, value)
     built = build(Case, data)
     folder = Path(case).parent if case.endswith(".toml") else None
+    if built.head.tuft_table:  # the table's tufts replace it, checked as case-file tufts
+        tufts = read_tuft_table(_resolved(built.head.tuft_table, folder), built.limits.bristles)
+        del data["head"]["tuft_table"]
+        data["head"]["tufts"] = [to_plain(tuft) for tuft in tufts]
+        built = build(Case, data)
     if built.motion.profile == "csv":
         built = replace(built, motion=replace(
             built.motion, csv_file=_resolved(built.motion.csv_file, folder)))
