@@ -3,7 +3,8 @@
 Each run is drawn in two views, seen from the side (slide axis horizontal) and from the
 end (the other horizontal axis), in a frame that moves with the head: the horizontal
 origin is the centre of the bristle roots, the surface is z = 0. A PRB bristle is drawn as
-root, characteristic pivot and tip; a DFM bristle through its N nodes.
+root, characteristic pivot and tip; a DFM bristle through its N nodes; each as a tube as
+thick as its section seen in that view (a round filament's diameter).
 """
 
 from __future__ import annotations
@@ -12,7 +13,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
-from matplotlib.collections import LineCollection, PatchCollection
+from matplotlib.collections import PatchCollection, PolyCollection
 from matplotlib.patches import Circle
 
 from exubrush.files import atomic_file
@@ -39,6 +40,8 @@ class RunShapes:
         Centreline points [mm], root first, horizontal origin at the roots' centre.
     tip_radius : ndarray (n_bristles,)
         Tip sphere radii [mm].
+    half_width : ndarray (n_bristles, 2)
+        Half the section's extent along the head's X and Y [mm] (the tube drawn).
     direction : str
         Slide direction (``orthogonal`` or ``parallel``).
     surface : Surface
@@ -54,6 +57,7 @@ class RunShapes:
     time: np.ndarray
     lines: np.ndarray
     tip_radius: np.ndarray
+    half_width: np.ndarray
     direction: str
     surface: Surface
     centre: np.ndarray
@@ -86,7 +90,9 @@ def load_shapes(directory: str | Path) -> RunShapes:
     except MeshError:
         mesh = None
     return RunShapes(label, np.asarray(results.shape_time), lines,
-                     np.array([b.tip_radius for b in bristles]), case.motion.direction,
+                     np.array([b.tip_radius for b in bristles]),
+                     np.array([[0.5 * b.width, 0.5 * b.height] for b in bristles]),
+                     case.motion.direction,
                      case.surface, centre, mesh)
 
 
@@ -104,10 +110,25 @@ def _limits(runs: list[RunShapes]) -> tuple[float, float, float]:
     return 1.05 * reach, min(-0.05 * top, low - 0.3), 1.05 * top
 
 
+def tube_outline(points: np.ndarray, radius: float) -> np.ndarray:
+    """Closed outline (2 n, 2) of a tube of ``radius`` around the 2-D polyline ``points``
+    (n, 2): each point offset both ways along the mean normal of its segments."""
+    tangents = np.diff(points, axis=0)
+    tangents /= np.maximum(np.linalg.norm(tangents, axis=1, keepdims=True), 1e-12)
+    at_points = np.vstack([tangents[:1], tangents[:-1] + tangents[1:], tangents[-1:]])
+    at_points /= np.maximum(np.linalg.norm(at_points, axis=1, keepdims=True), 1e-12)
+    normals = np.column_stack([-at_points[:, 1], at_points[:, 0]])
+    return np.vstack([points + radius * normals, (points - radius * normals)[::-1]])
+
+
 def _draw_view(axis, run: RunShapes, sample: int, horizontal: int, limits) -> None:
     lines = run.lines[sample]
-    axis.add_collection(LineCollection(lines[:, :, [horizontal, 2]], colors="tab:blue",
-                                       linewidths=1.0, alpha=0.6))
+    # a bristle's thickness seen in this view is its section's extent along the view's
+    # horizontal axis (the bend's own plane is nearly the view's in both views)
+    radii = run.half_width[:, horizontal]
+    axis.add_collection(PolyCollection(
+        [tube_outline(line[:, [horizontal, 2]], r) for line, r in zip(lines, radii, strict=True)],
+        facecolors="tab:blue", edgecolors="none", alpha=0.45))
     tips = [Circle((p[horizontal], p[2]), r) for p, r in zip(lines[:, -1], run.tip_radius,
                                                             strict=True)]
     axis.add_collection(PatchCollection(tips, facecolor="tab:orange", edgecolor="0.3",

@@ -3,7 +3,7 @@
 import numpy as np
 from PIL import Image
 
-from exubrush.frames import load_shapes, write_animation, write_frames
+from exubrush.frames import load_shapes, tube_outline, write_animation, write_frames
 from exubrush.parameters.fields import to_plain
 from exubrush.parameters.io import load_case
 from exubrush.results import Results
@@ -45,3 +45,15 @@ def test_frames_and_animation_of_two_saved_runs(tmp_path):
     with Image.open(tmp_path / "bristles.gif") as gif:
         assert gif.n_frames == 4
     assert len(calls) == 4
+
+
+def test_a_tube_is_its_centreline_offset_by_the_radius_on_both_sides():
+    bent = np.array([[0.0, 0.0], [0.0, 1.0], [1.0, 2.0]])  # straight up, then 45 degrees
+    outline = tube_outline(bent, 0.1)
+    assert outline.shape == (6, 2)
+    np.testing.assert_allclose(outline[0], [-0.1, 0.0], atol=1e-15)  # root: across the axis
+    np.testing.assert_allclose(outline[-1], [0.1, 0.0], atol=1e-15)
+    # every outline point lies exactly one radius from its centreline point
+    np.testing.assert_allclose(np.linalg.norm(outline[:3] - bent, axis=1), 0.1, rtol=1e-12)
+    np.testing.assert_allclose(np.linalg.norm(outline[3:][::-1] - bent, axis=1), 0.1,
+                               rtol=1e-12)

@@ -88,7 +88,8 @@ TABLE_FAULTS = [
      "number"),
     ("x [mm],y [mm],material [kg]\n0,0,nylon\n", "column 'material' holds text and takes no "
      "unit, got [kg]"),
-    ("x [mm],y [mm]\n0,0\n1,0\n", "head: tuft 't.csv line 2' and tuft 't.csv line 3' overlap by 0.6 mm"),
+    ("x [mm],y [mm]\n0,0\n1,0\n", "head: tuft 't.csv line 2' and tuft 't.csv line 3' "
+     "overlap by 0.6 mm"),
     ("x [mm],y [mm],material\n0,0,steel\n", "head: tuft 't.csv line 2': material 'steel' is "
      "not defined"),
     ("x [mm],y [mm]\n", "needs a header and at least one tuft row, found 1 lines"),
