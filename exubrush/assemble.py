@@ -63,9 +63,12 @@ def assemble_results(prepared: PreparedCase, solutions: Sequence[GroupSolution |
                        [s.handle_mass for s in ran], acceleration)
     handle_position = position + np.array([0.0, 0.0, prepared.start_height])
     nodes_per_bristle = case.model.segments if case.model.kind == "dfm" else 1
-    nodes = (np.concatenate([s.nodes[:n] for s in solutions], axis=1) if n
+    # the groups' bristles joined, then put back in the head's order (groups that can
+    # touch each other need not be contiguous ranges)
+    order = np.argsort(np.concatenate(prepared.groups))
+    nodes = (np.concatenate([s.nodes[:n] for s in solutions], axis=1)[:, order] if n
              else np.zeros((0, len(prepared.bristles), nodes_per_bristle, 3)))
-    tip_force = (np.concatenate([s.tip_force[:n] for s in solutions], axis=1) if n
+    tip_force = (np.concatenate([s.tip_force[:n] for s in solutions], axis=1)[:, order] if n
                  else np.zeros((0, len(prepared.bristles), 3)))
     completed = (not facts.interrupted and len(ran) == len(solutions)
                  and all(s.completed for s in ran))
@@ -79,7 +82,7 @@ def assemble_results(prepared: PreparedCase, solutions: Sequence[GroupSolution |
     )
     shape_coordinates = None
     if case.output.solution_file and n:
-        shape_coordinates = head_coordinates([s.coordinates for s in solutions])
+        shape_coordinates = head_coordinates([s.coordinates for s in solutions], order)
     peak = float(np.max(np.abs(force[:, 2]))) if n else 0.0
     bound = prepared.force_bound()
     metadata = {
@@ -129,6 +132,12 @@ def _derived(prepared: PreparedCase, ran: list[GroupSolution], facts: RunFacts) 
         "slide_start_s": motion.slide_start,
         "end_time_s": motion.end_time,
     }
+    if case.contact.between_bristles:
+        derived["bristle_groups"] = [list(g) for g in prepared.groups]
+        derived["bristle_contacts_max"] = sum(s.bristle_contacts_max for s in ran)
+        derived["bristle_contacts_mean"] = sum(s.bristle_contacts_mean for s in ran)
+        derived["bristle_overlap_max_mm"] = max((s.bristle_overlap_max for s in ran),
+                                                default=0.0)
     if prepared.prb is not None:
         derived["prb_gamma"] = prepared.prb.gamma
         derived["prb_stiffness_coefficient"] = prepared.prb.stiffness_coefficient

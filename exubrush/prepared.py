@@ -25,7 +25,7 @@ from exubrush.budget import (
 )
 from exubrush.kinematics import SLIDE_AXES
 from exubrush.mesh import MeshError, MeshSurface, read_mesh
-from exubrush.models.geometry import BristleGeometry, can_reach, head_bristles
+from exubrush.models.geometry import BristleGeometry, can_reach, head_bristles, touching_groups
 from exubrush.models.howell import howell_parameters
 from exubrush.motion import HeadMotion, TabulatedSlide, head_motion
 from exubrush.parameters.case import Case
@@ -165,7 +165,7 @@ def prepare(case: Case) -> PreparedCase:
         prb=prb_parameters(case) if case.model.kind == "prb" else None,
         friction_window=friction_window(case, motion),
         force_limits=static_force_limits(case, bristles),
-        groups=bristle_groups(case, len(bristles)),
+        groups=bristle_groups(case, bristles),
         work=work,
         inputs=input_digests(motion, mesh),
         warnings=tuple(motion_warnings(case, motion)) + tuple(
@@ -266,8 +266,13 @@ def friction_window(case: Case, motion: HeadMotion) -> tuple[float, float] | Non
     return (motion.approach_duration, motion.slide_start)
 
 
-def bristle_groups(case: Case, count: int) -> tuple[tuple[int, ...], ...]:
-    """Bristle indices of each Exudyn system: one per bristle, or all in one (coupled)."""
+def bristle_groups(case: Case, bristles) -> tuple[tuple[int, ...], ...]:
+    """Bristle indices of each Exudyn system: all in one (solver.partition "coupled"), the
+    groups that can touch each other (contact.between_bristles; exubrush.models.geometry.
+    touching_groups), or one per bristle."""
+    count = len(bristles)
     if case.solver.partition == "coupled":
         return (tuple(range(count)),)
+    if case.contact.between_bristles:
+        return touching_groups(list(bristles))
     return tuple((i,) for i in range(count))

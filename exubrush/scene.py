@@ -16,6 +16,11 @@ import exudyn.itemInterface as eii
 import numpy as np
 from exudyn.rigidBodyUtilities import InertiaCuboid
 
+from exubrush.contact.exudyn_between import (
+    BristleContact,
+    add_bristle_contact,
+    locate_in_system,
+)
 from exubrush.contact.exudyn_contact import (
     add_builtin_tip_contact,
     add_tip_contact,
@@ -64,6 +69,8 @@ class Scene:
     ground: int = 0
     # callables (mbs, t) that the solve must call before every step
     step_hooks: list = field(default_factory=list)
+    # contact between the bristles (contact.between_bristles, a group of two or more)
+    bristle_contact: BristleContact | None = None
 
     def run_step_hooks(self, mbs, t) -> bool:
         """Call every step hook; True (go on). Fit for Exudyn's pre-step user function
@@ -262,15 +269,17 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
     surface = surface_marker(mbs, ground, case.surface)
     laws = {}
     origin = (0.0, 0.0, prepared.start_height)
+    polylines = []
     for index, bristle in enumerate(bristles):
         if case.model.kind == "dfm":
             items = add_dfm_bristle(mbs, handle["bodyNumber"], bristle, bristle.material,
                                     case.model.segments, origin, drawn, case.model.rotation)
         else:
-            items = add_prb_bristle(mbs, handle["bodyNumber"], bristle, bristle.material, prb.gamma,
-                                    prb.stiffness_coefficient, origin, drawn,
+            items = add_prb_bristle(mbs, handle["bodyNumber"], bristle, bristle.material,
+                                    prb.gamma, prb.stiffness_coefficient, origin, drawn,
                                     case.model.rotation, case.model.prb_link)
         scene.keep_alive.extend(items.user_functions)
+        polylines.append(_polyline(bristle, items.nodes, gamma))
         scene.node_sensors.append([
             mbs.AddSensor(eii.SensorNode(nodeNumber=n, storeInternal=True, writeToFile=False,
                                          outputVariableType=exu.OutputVariableType.Position))
@@ -297,5 +306,35 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
     if case.contact.backend == "exudyn-builtin" and window is not None and scene.contacts:
         scene.step_hooks.append(
             builtin_friction_blend(scene.contacts, case.contact.dynamic_friction, window))
+    if case.contact.between_bristles and len(bristles) > 1:
+        scene.bristle_contact = add_bristle_contact(
+            mbs, handle["nodeNumber"], polylines,
+            [0.5 * max(b.width, b.height) for b in bristles], case.contact.bristles)
+        scene.keep_alive.append(scene.bristle_contact)
+        scene.step_hooks.append(_contact_sampler(scene.bristle_contact, case.output.interval))
     mbs.Assemble()
+    if scene.bristle_contact is not None:
+        locate_in_system(mbs, scene.bristle_contact)
     return scene
+
+
+def _polyline(bristle: BristleGeometry, nodes, gamma: float | None) -> list:
+    """The points of a bristle's capsule chain (exubrush.contact.exudyn_between): its root
+    (and a PRB link's pivot) on the handle, then its model's nodes."""
+    points = [("handle", bristle.root)]
+    if gamma is not None:
+        points.append(("handle", bristle.point((1.0 - gamma) * bristle.length)))
+    return points + [("node", n) for n in nodes]
+
+
+def _contact_sampler(contact: BristleContact, interval: float):
+    """Step hook recording the bristle contacts of the last converged state once per
+    ``interval`` [s]."""
+    last = [-np.inf]
+
+    def sample(mbs, t):
+        if t - last[0] >= interval:
+            contact.sample(mbs)
+            last[0] = t
+
+    return sample

@@ -60,6 +60,11 @@ class GroupSolution:
         Contact elements in the system.
     handle_mass : float
         Mass of the group's handle [t].
+    bristle_contacts_max, bristle_contacts_mean : float
+        Touching capsule pairs between the group's bristles, most and mean over the output
+        samples (0 without contact between bristles).
+    bristle_overlap_max : float
+        Deepest overlap of two bristles seen at an output sample [mm].
     """
 
     time: np.ndarray
@@ -73,6 +78,9 @@ class GroupSolution:
     wall_time: float
     contacts: int
     handle_mass: float
+    bristle_contacts_max: float = 0.0
+    bristle_contacts_mean: float = 0.0
+    bristle_overlap_max: float = 0.0
 
     ARRAYS = ("time", "reaction", "nodes", "tip_force", "coordinates")
 

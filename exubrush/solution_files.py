@@ -28,12 +28,15 @@ def read_coordinate_file(path: str | Path) -> np.ndarray:
         return np.loadtxt(path, comments="#", delimiter=",", ndmin=2)
 
 
-def head_coordinates(groups: list[np.ndarray]) -> np.ndarray:
-    """Join the solution rows of the groups (in bristle order) into rows of the whole head.
+def head_coordinates(groups: list[np.ndarray], order: np.ndarray) -> np.ndarray:
+    """Join the solution rows of the groups into rows of the whole head, the bristles'
+    coordinates in the head's order.
 
-    Each group's rows are (time, handle coordinates, its bristles' coordinates). Rows are
-    matched by index, up to the shortest group, and must be at the same times (every group
-    writes at the same multiples of the shape interval).
+    Each group's rows are (time, handle coordinates, its bristles' coordinates, the same
+    number for every bristle). ``order[k]`` is the position, among the groups' bristles
+    joined in group order, of the head's bristle k. Rows are matched by index, up to the
+    shortest group, and must be at the same times (every group writes at the same
+    multiples of the shape interval).
     """
     rows = min(len(g) for g in groups)
     times = np.array([g[:rows, 0] for g in groups])
@@ -41,7 +44,10 @@ def head_coordinates(groups: list[np.ndarray]) -> np.ndarray:
         raise ValueError("the groups' solution rows are not at the same times; the head's "
                          "coordinates cannot be joined")
     skip = 1 + HANDLE_COORDINATES
-    return np.hstack([groups[0][:rows], *(g[:rows, skip:] for g in groups[1:])])
+    bristles = np.hstack([g[:rows, skip:] for g in groups])
+    per_bristle = bristles.shape[1] // len(order)
+    blocks = bristles.reshape(rows, len(order), per_bristle)[:, order]
+    return np.hstack([groups[0][:rows, :skip], blocks.reshape(rows, -1)])
 
 
 def write_solution_file(path: Path, coordinates: np.ndarray, source: str) -> None:

@@ -50,7 +50,8 @@ def solve_group(prepared: PreparedCase, selection: tuple[int, ...],
     case = prepared.case
     scene = build_scene(prepared, selection)
     end_time = scene.motion.end_time
-    settings = dynamic_settings(case.solver, end_time, case.output.interval)
+    settings = dynamic_settings(case.solver, end_time, case.output.interval,
+                                touching=scene.bristle_contact is not None)
     coordinates_file = None
     if case.output.solution_file:
         handle, coordinates_file = tempfile.mkstemp(prefix="exubrush-", suffix=".txt")
@@ -105,6 +106,9 @@ def solve_group(prepared: PreparedCase, selection: tuple[int, ...],
                      None if frame is None else np.asarray(scene.mbs.GetSensorStoredData(frame)))
                     for index, sensor, frame in scene.contact_sensors]
     statistics = solver_statistics(scene.mbs)
+    touching = scene.bristle_contact
+    counts = np.asarray(touching.counts if touching is not None else [], float)
+    overlaps = touching.overlaps if touching is not None else []
     # Exudyn keeps a system container alive after its last Python reference is gone: without
     # this, a worker's memory grew by the stored sensor data of every group it solved
     # (0.9 MB per default bristle and 2 periods, validation/benchmarks/README.md)
@@ -146,6 +150,9 @@ def solve_group(prepared: PreparedCase, selection: tuple[int, ...],
         wall_time=wall,
         contacts=len(scene.contacts),
         handle_mass=float(scene.handle_mass),
+        bristle_contacts_max=float(counts.max()) if len(counts) else 0.0,
+        bristle_contacts_mean=float(counts.mean()) if len(counts) else 0.0,
+        bristle_overlap_max=max(overlaps, default=0.0),
     )
 
 

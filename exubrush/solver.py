@@ -18,7 +18,8 @@ def quiet(settings: exu.SimulationSettings) -> exu.SimulationSettings:
     return settings
 
 
-def dynamic_settings(solver: Solver, end_time: float, output_interval: float):
+def dynamic_settings(solver: Solver, end_time: float, output_interval: float,
+                     touching: bool = False):
     """Implicit generalized-α settings for a brushing run.
 
     Choices (each measured on this problem, validation/benchmarks/README.md): spectral
@@ -32,6 +33,9 @@ def dynamic_settings(solver: Solver, end_time: float, output_interval: float):
     ``newton_iterations`` (12) Newton iterations per try: a step that has not converged by
     then is cut at once instead of after Exudyn's 25 full-Newton iterations, each with a
     fresh Jacobian (on five DFM bristles: 17 % less wall time, 24 % fewer Jacobians).
+    ``touching``: the system holds bristles that touch each other (exubrush.contact.
+    exudyn_between): a sparse solver, and the sparsity pattern is analysed anew at every
+    factorisation, as contacts come and go.
     """
     settings = quiet(exu.SimulationSettings())
     ti = settings.timeIntegration
@@ -49,18 +53,20 @@ def dynamic_settings(solver: Solver, end_time: float, output_interval: float):
     ti.newton.adaptInitialResidual = False
     ti.newton.maxIterations = solver.newton_iterations
     settings.solution.sensors.writePeriod = output_interval
-    settings.linearSolver.solverType = getattr(exu.LinearSolverType, linear_solver(solver))
-    # a coupled head's sparsity pattern never changes between steps
-    settings.linearSolver.reuseAnalyzedPattern = True
+    settings.linearSolver.solverType = getattr(exu.LinearSolverType,
+                                               linear_solver(solver, touching))
+    # without contacts between bristles, a coupled head's sparsity pattern never changes
+    settings.linearSolver.reuseAnalyzedPattern = not touching
     settings.parallel.numberOfThreads = solver.threads
     return settings
 
 
-def linear_solver(solver: Solver) -> str:
+def linear_solver(solver: Solver, touching: bool = False) -> str:
     """Name of the Exudyn linear solver for ``solver.linear_solver``.
 
-    "auto": a whole head ("coupled") has thousands of coordinates with a block-sparse
-    Jacobian, so EigenSparse; one bristle has a few dozen, so a dense LU. EigenDense (partial
+    "auto": a whole head ("coupled") or a group of bristles that touch each other
+    (``touching``) has thousands of coordinates with a block-sparse Jacobian, so
+    EigenSparse; one bristle has a few dozen, so a dense LU. EigenDense (partial
     pivoting) solved five DFM bristles 20 % faster than EXUdense, with 0.4 % more steps and
     mean forces within 0.01 %; like EXUdense, it lets Exudyn cut the step where the Jacobian
     turns singular (a PRB link swinging round at a reversal, where the Stribeck friction's
@@ -68,7 +74,7 @@ def linear_solver(solver: Solver) -> str:
     """
     if solver.linear_solver != "auto":
         return solver.linear_solver
-    return "EigenSparse" if solver.partition == "coupled" else "EigenDense"
+    return "EigenSparse" if solver.partition == "coupled" or touching else "EigenDense"
 
 
 def record_coordinates(settings: exu.SimulationSettings, path: str, period: float) -> None:

@@ -1,5 +1,5 @@
-"""Static solutions in Exudyn for checks against closed forms: single bristle models and a
-tip sphere pressed onto a surface."""
+"""Static solutions in Exudyn for checks against closed forms: single bristle models, a
+tip sphere pressed onto a surface and a bristle pushed against its neighbour."""
 
 from __future__ import annotations
 
@@ -8,6 +8,7 @@ import exudyn.itemInterface as eii
 import numpy as np
 from exudyn.rigidBodyUtilities import InertiaSphere
 
+from exubrush.contact.exudyn_between import add_bristle_contact, locate_in_system
 from exubrush.contact.exudyn_contact import (
     add_tip_contact,
     contact_user_function,
@@ -18,8 +19,8 @@ from exubrush.models.assembly import rigid_marker
 from exubrush.models.dfm import add_dfm_bristle
 from exubrush.models.geometry import BristleGeometry
 from exubrush.models.prb import add_prb_bristle
-from exubrush.parameters.case import ContactLaw, Material, Surface
-from exubrush.solver import static_settings
+from exubrush.parameters.case import BristleContactLaw, ContactLaw, Material, Solver, Surface
+from exubrush.solver import dynamic_settings, static_settings
 
 
 def tip_loaded_cantilever(
@@ -129,3 +130,65 @@ def sphere_pressed_on_surface(surface: Surface, law: ContactLaw, radius: float, 
     if not mbs.SolveStatic(static_settings(load_steps)):
         raise RuntimeError("static solve of the pressed sphere did not converge")
     return np.asarray(mbs.GetNodeOutput(body["nodeNumber"], exu.OutputVariableType.Position))
+
+
+def pushed_pair(bristles: tuple[BristleGeometry, BristleGeometry], force: np.ndarray,
+                law: BristleContactLaw, segments: int = 12, ramp: float = 1.0,
+                step_size: float = 2e-3):
+    """Two DFM bristles clamped to a fixed base, a dead force on the first's tip ramped up
+    over ``ramp`` [s] and held for a fifth of that, with contact between them
+    (exubrush.contact.exudyn_between): quasi-static, settled by the bristles' damping.
+
+    Returns
+    -------
+    tips : ndarray (2, 3)
+        Both tip positions at the end [mm].
+    deepest : float
+        Deepest overlap of the two bristles seen at any 0.01 s sample [mm].
+    completed : bool
+        Whether the solve reached the end.
+    """
+    SC = exu.SystemContainer()
+    mbs = SC.AddSystem()
+    base = mbs.CreateRigidBody(referencePosition=[0.0, 0.0, 0.0],
+                               inertia=InertiaSphere(1e-9, 1.0), gravity=[0.0, 0.0, 0.0],
+                               nodeType=exu.NodeType.RotationRxyz, returnDict=True)
+    fixed = mbs.AddMarker(eii.MarkerNodeCoordinate(
+        nodeNumber=mbs.AddNode(eii.NodePointGround()), coordinate=0))
+    for coordinate in range(6):
+        marker = mbs.AddMarker(eii.MarkerNodeCoordinate(nodeNumber=base["nodeNumber"],
+                                                        coordinate=coordinate))
+        mbs.AddObject(eii.ObjectConnectorCoordinate(markerNumbers=[fixed, marker]))
+    items = [add_dfm_bristle(mbs, base["bodyNumber"], b, b.material, segments)
+             for b in bristles]
+    contact = add_bristle_contact(
+        mbs, base["nodeNumber"],
+        [[("handle", b.root)] + [("node", n) for n in it.nodes]
+         for b, it in zip(bristles, items, strict=True)],
+        [0.5 * max(b.width, b.height) for b in bristles], law)
+    tip = mbs.AddMarker(eii.MarkerBodyPosition(bodyNumber=items[0].tip_body,
+                                               localPosition=[0.0, 0.0, 0.0]))
+    load = np.asarray(force, float)
+    mbs.AddLoad(eii.LoadForceVector(
+        markerNumber=tip, loadVector=[0.0, 0.0, 0.0],
+        loadVectorUserFunction=lambda mbs, t, vector: list(load * min(t / ramp, 1.0))))
+    mbs.Assemble()
+    locate_in_system(mbs, contact)
+    samples = [-1.0]
+
+    def sample(mbs, t):
+        if t - samples[0] >= 0.01:
+            contact.sample(mbs)
+            samples[0] = t
+        return True
+
+    mbs.SetPreStepUserFunction(sample)
+    settings = dynamic_settings(Solver(step_size=step_size), 1.2 * ramp, 0.01, touching=True)
+    try:
+        completed = bool(mbs.SolveDynamic(settings))
+    except exu.SolverError:
+        completed = False
+    contact.sample(mbs)
+    tips = np.array([mbs.GetNodeOutput(it.nodes[-1], exu.OutputVariableType.Position)
+                     for it in items])
+    return tips, max(contact.overlaps), completed

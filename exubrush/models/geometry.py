@@ -5,7 +5,8 @@ straight, perfectly aligned bristle pressed onto a plane cannot choose a side to
 at a stroke reversal, and the solver jams. Each root is therefore tilted by
 ``Head.root_tilt`` (default 0.5°) about a horizontal axis whose direction is drawn from a
 seeded uniform distribution, so two runs with the same seed are identical and
-``root_tilt = 0`` restores the ideal head.
+``root_tilt = 0`` restores the ideal head. The filaments of a tuft share one direction, so
+that filaments packed side by side start parallel instead of leaning into each other.
 """
 
 from __future__ import annotations
@@ -71,6 +72,13 @@ class BristleGeometry:
         return self.root + s * self.frame[:, 0]
 
     @property
+    def outer_radius(self) -> float:
+        """Radius of the smallest cylinder around the bristle's section and tip sphere [mm]."""
+        section = (np.hypot(self.width, self.height) if self.shape == "rectangle"
+                   else max(self.width, self.height))
+        return max(0.5 * float(section), self.tip_radius)
+
+    @property
     def lowest_reach(self) -> float:
         """Z of the tip sphere's lowest point relative to the roots' surface, upright [mm]."""
         return float(self.point(self.length)[2] - self.tip_radius)
@@ -79,6 +87,33 @@ class BristleGeometry:
 def can_reach(bristle: BristleGeometry, interaction_distance: float) -> bool:
     """Coarse reach test: a tip touches the plane only if d < l + r (any tilt) [mm]."""
     return interaction_distance < bristle.length + bristle.tip_radius
+
+
+def touching_groups(bristles: list[BristleGeometry]) -> tuple[tuple[int, ...], ...]:
+    """Bristles that can touch each other, directly or through others: the connected
+    components of the graph whose edges join bristles closer at the root than their
+    lengths and outer radii together (a bristle never leaves the ball of its length around
+    its root, so no pair outside it can ever touch, whatever the motion). Each group's
+    indices ascend; groups are ordered by their first index."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+    from scipy.spatial import cKDTree
+
+    roots = np.array([b.root for b in bristles])
+    reach = np.array([b.length + b.outer_radius for b in bristles])
+    pairs = np.array(sorted(cKDTree(roots).query_pairs(2.0 * reach.max())), dtype=int)
+    if len(pairs):
+        gaps = np.linalg.norm(roots[pairs[:, 0]] - roots[pairs[:, 1]], axis=1)
+        pairs = pairs[gaps < reach[pairs[:, 0]] + reach[pairs[:, 1]]]
+    count = len(bristles)
+    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])) if len(pairs)
+                       else (np.zeros(0), (np.zeros(0, int), np.zeros(0, int))),
+                       shape=(count, count))
+    _, labels = connected_components(graph, directed=False)
+    groups: dict[int, list[int]] = {}
+    for index, label in enumerate(labels):
+        groups.setdefault(int(label), []).append(index)
+    return tuple(sorted((tuple(g) for g in groups.values()), key=lambda g: g[0]))
 
 
 def _entries(head: Head) -> list[tuple[BristleEntry, Material, int | None]]:
@@ -139,13 +174,16 @@ def head_bristles(head: Head) -> list[BristleGeometry]:
     """
     rng = np.random.default_rng(head.seed)
     bristles = []
+    tuft_directions: dict[int, float] = {}
     for entry, material, tuft in _entries(head):
         frame = (
             rotation_about([1.0, 0.0, 0.0], entry.tilt_x)
             @ rotation_about([0.0, 1.0, 0.0], entry.tilt_y)
             @ UPRIGHT_FRAME
         )
-        direction = rng.uniform(0.0, 2.0 * np.pi)
+        # the filaments of a tuft share one direction: they start parallel, as they touch
+        direction = (rng.uniform(0.0, 2.0 * np.pi) if tuft is None
+                     else tuft_directions.setdefault(tuft, rng.uniform(0.0, 2.0 * np.pi)))
         if head.root_tilt > 0.0:
             tilt_axis = np.array([np.cos(direction), np.sin(direction), 0.0])
             frame = rotation_about(tilt_axis, head.root_tilt) @ frame

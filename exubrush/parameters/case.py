@@ -242,6 +242,25 @@ class Head(Parameters):
 
 
 @dataclass(frozen=True)
+class BristleContactLaw(Parameters):
+    """Contact between bristles (contact.between_bristles): a linear penalty along the
+    normal of the touching surfaces with damping, and Coulomb friction regularised below a
+    sliding speed (docs/tufts.md, "Contact between bristles")."""
+
+    # a numerical choice (docs/tufts.md): the deepest overlap in a pressed 7-filament tuft
+    # was 3.3 % of the diameter at 50 N/mm, 5.1 % at 20; 100 N/mm doubled the run time
+    stiffness: float = param(50.0, "penalty stiffness per contact", "N/mm", above=0.0)
+    # about critical damping 2√(k m) of one DFM segment of a nylon filament (1e-4) or of a
+    # silicone blade (3e-4)
+    damping: float = param(2e-4, "damping per contact", "N*s/mm", minimum=0.0)
+    friction: float = param(0.2, "Coulomb friction coefficient between bristles (nylon on "
+                                 "nylon)", minimum=0.0)
+    friction_velocity: float = param(
+        1.0, "sliding speed below which friction grows linearly from zero", "mm/s",
+        above=0.0)
+
+
+@dataclass(frozen=True)
 class ContactLaw(Parameters):
     """Tip-surface contact: the paper's normal and friction laws (mm-N-s units; defaults:
     the paper's table 2) and how they are computed (``backend``).
@@ -269,6 +288,9 @@ class ContactLaw(Parameters):
         "coefficient, linear damping: an approximation, see docs/model.md)",
         "text", choices=CONTACT_BACKENDS,
     )
+    between_bristles: bool = param(
+        False, "bristles touch each other (groups that can touch are solved together)")
+    bristles: BristleContactLaw = field(default_factory=BristleContactLaw)
 
     def check(self) -> None:
         """Cross-field rules: v_s < v_d."""

@@ -55,12 +55,22 @@ def test_groups_join_into_the_head_once_with_its_handle():
     time = np.array([[0.0], [0.1]])
     first = np.hstack([time, np.ones((2, 6)), np.full((2, 3), 2.0)])
     second = np.hstack([time, np.ones((2, 6)), np.full((2, 3), 3.0)])
-    joined = head_coordinates([first, second])
+    joined = head_coordinates([first, second], np.array([0, 1]))
     np.testing.assert_array_equal(joined[0], [0.0, *[1.0] * 6, *[2.0] * 3, *[3.0] * 3])
     late = second.copy()
     late[1, 0] = 0.2
     with pytest.raises(ValueError, match="not at the same times"):
-        head_coordinates([first, late])
+        head_coordinates([first, late], np.array([0, 1]))
+
+
+def test_groups_that_interleave_join_in_the_head_order():
+    # groups (0, 2) and (1,): joined positions hold bristles 0, 2, 1
+    time = np.array([[0.0]])
+    first = np.hstack([time, np.ones((1, 6)), [[10.0, 11.0, 30.0, 31.0]]])
+    second = np.hstack([time, np.ones((1, 6)), [[20.0, 21.0]]])
+    order = np.argsort(np.concatenate([(0, 2), (1,)]))
+    joined = head_coordinates([first, second], order)
+    np.testing.assert_array_equal(joined[0, 7:], [10.0, 11.0, 20.0, 21.0, 30.0, 31.0])
 
 
 @pytest.mark.parametrize("rows", [0, 1, 3])

@@ -147,3 +147,24 @@ def test_a_tuft_out_of_reach_is_a_warning_not_an_error(tmp_path):
                                  "motion.interaction_distance = 8.4 mm: its filaments never "
                                  "touch it",)
     assert prepared.reaching == (True,) * 37 + (False,) * 37
+
+
+def test_bristles_that_can_touch_are_grouped_and_far_tufts_apart(tmp_path):
+    # two tufts 10.4 mm long: roots 25 mm apart can never touch (2 x (10.4 + 0.1) < 25), the
+    # third tuft 20 mm from the second can (21 mm of reach together)
+    table = "x [mm],y [mm],filaments\n0,0,7\n25,0,7\n45,0,1\n"
+    case = load_case(str(_case_with_table(tmp_path, table)), ["contact.between_bristles=true"])
+    assert prepare(case).groups == (tuple(range(7)), tuple(range(7, 15)))
+
+
+def test_groups_that_interleave_keep_ascending_indices():
+    from dataclasses import replace
+
+    from exubrush.models.geometry import touching_groups
+    bristles = head_bristles(load_case("orthogonal").head)
+    far = [replace(b, root=b.root + [60.0 * (i % 2), 0, 0]) for i, b in enumerate(bristles[:4])]
+    assert touching_groups(far) == ((0, 2), (1, 3))
+
+
+def test_without_contact_between_bristles_each_bristle_is_its_own_group():
+    assert prepare(load_case("tuft")).groups == tuple((i,) for i in range(37))

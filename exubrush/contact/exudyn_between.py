@@ -1,0 +1,178 @@
+"""Contact between the bristles of a group as one Exudyn ``ObjectGenericODE2``.
+
+The object spans the handle's node and every node of the group's bristles. Its force user
+function places each bristle's points (root and pivot on the handle, the nodes of its
+model) from the coordinates Exudyn hands it, finds the touching capsules
+(exubrush.contact.between) and returns their forces on the points' position coordinates;
+its Jacobian user function returns the touching pairs' derivatives as sparse triplets, so
+Exudyn's Jacobian never differentiates the whole group numerically and only coordinates in
+contact are coupled. The object has no mass, stiffness or damping of its own.
+
+Forces act on node positions only: a contact force between two points of two segments is
+handed to the segments' end nodes, which keeps its resultant and moment; the couple of the
+friction force about a filament's own axis (its radius times the friction force) is not
+represented (docs/tufts.md).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import exudyn as exu
+import exudyn.itemInterface as eii
+import numpy as np
+
+from exubrush.contact.between import (
+    Chains,
+    candidate_pairs,
+    contact_forces,
+    point_force_derivatives,
+    point_forces,
+)
+from exubrush.parameters.case import BristleContactLaw
+
+# positions beyond this [mm] are a diverged Newton iterate (a head is centimetres wide)
+DIVERGED = 1e6
+
+
+@dataclass
+class BristleContact:
+    """The contact object of a group and what the solve reads from it.
+
+    Attributes
+    ----------
+    object_number : int
+        The ObjectGenericODE2.
+    counts, overlaps : list of float
+        Touching capsule pairs and the deepest overlap [mm] at each state sampled by
+        :meth:`sample` (converged states only).
+    """
+
+    chains: Chains
+    law: BristleContactLaw
+    coordinates: np.ndarray  # (points, 3): index of each point's coordinate in the object's q
+    base: np.ndarray  # (points, 3): position of each point at q = 0 [mm]
+    size: int  # coordinates of the object
+    system_indices: np.ndarray  # (size,): the object's coordinates in the system's ODE2 vector
+    object_number: int = -1
+    counts: list = field(default_factory=list)
+    overlaps: list = field(default_factory=list)
+
+    def points(self, q: np.ndarray) -> np.ndarray:
+        """Point positions [mm] (or velocities [mm/s], with base 0) from the object's q."""
+        return self.base + q[self.coordinates]
+
+    def _contacts(self, q, q_t):
+        points = self.points(q)
+        velocities = q_t[self.coordinates]
+        if not np.all(np.abs(points) < DIVERGED):  # a diverged Newton iterate, rejected anyway
+            pairs = np.zeros((0, 2), int)
+        else:
+            pairs = candidate_pairs(self.chains, points)
+        return points, velocities, contact_forces(self.chains, points, velocities, pairs,
+                                                  self.law)
+
+    def force(self, mbs, t, item, q, q_t):
+        """Exudyn force user function: the contact forces on the object's coordinates."""
+        _, _, contacts = self._contacts(np.asarray(q), np.asarray(q_t))
+        out = np.zeros(self.size)
+        np.add.at(out, self.coordinates.ravel(),
+                  point_forces(contacts, len(self.base)).ravel())
+        return out
+
+    def jacobian(self, mbs, t, item, q, q_t, f_position, f_velocity):
+        """Exudyn Jacobian user function: −(∂f/∂q · f_position + ∂f/∂q_t · f_velocity) of
+        the touching pairs, as sparse triplets in the object's coordinates."""
+        points, velocities, contacts = self._contacts(np.asarray(q), np.asarray(q_t))
+        matrix = exu.MatrixContainer()
+        if not len(contacts.pairs):
+            matrix.SetWithSparseMatrix(np.zeros((0, 3)), self.size, self.size)
+            return matrix
+        rows, columns, by_position, by_velocity = point_force_derivatives(
+            self.chains, points, velocities, contacts, self.law)
+        flat = self.coordinates.ravel()
+        values = -(by_position * f_position + by_velocity * f_velocity)
+        matrix.SetWithSparseMatrix(np.column_stack([flat[rows], flat[columns], values]),
+                                   self.size, self.size)
+        return matrix
+
+    def sample(self, mbs) -> None:
+        """Record the contacts of the system's current (converged) state."""
+        data = mbs.systemData
+        q = np.asarray(data.GetODE2Coordinates())[self.system_indices]
+        q_t = np.asarray(data.GetODE2Coordinates_t())[self.system_indices]
+        _, _, contacts = self._contacts(q, q_t)
+        self.counts.append(len(contacts.pairs))
+        self.overlaps.append(float(contacts.overlap.max()) if len(contacts.pairs) else 0.0)
+
+
+def _position_block(mbs, node) -> tuple[int, np.ndarray]:
+    """(number of coordinates, reference position [mm]) of a node whose first three
+    coordinates are its position's displacement."""
+    reference = exu.ConfigurationType.Reference
+    count = len(mbs.GetNodeOutput(node, exu.OutputVariableType.Coordinates,
+                                  configuration=reference))
+    position = np.asarray(mbs.GetNodeOutput(node, exu.OutputVariableType.Position,
+                                            configuration=reference))
+    return count, position
+
+
+def add_bristle_contact(mbs, handle_node, polylines: list[list], radii: list[float],
+                        law: BristleContactLaw) -> BristleContact:
+    """Add the contact between the bristles of one system (call before ``Assemble``).
+
+    Parameters
+    ----------
+    handle_node : int
+        The handle's node; its first three coordinates move the points fixed to it (the
+        handle does not rotate).
+    polylines : list of list
+        Per bristle, its points from the root: ``("handle", offset)`` for a point fixed to
+        the handle (offset [mm] from the handle node's reference position) or ``("node",
+        n)`` for a node's position.
+    radii : list of float
+        Each bristle's contact radius [mm].
+    """
+    nodes = [handle_node]
+    for line in polylines:
+        nodes += [n for kind, n in line if kind == "node"]
+    offsets, references, total = {}, {}, 0
+    for node in nodes:
+        count, reference = _position_block(mbs, node)
+        offsets[node], references[node] = total, reference
+        total += count
+    coordinates, base, indices = [], [], []
+    handle = np.arange(3) + offsets[handle_node]
+    for line in polylines:
+        chain = []
+        for kind, value in line:
+            chain.append(len(base))
+            if kind == "handle":
+                coordinates.append(handle)
+                base.append(references[handle_node] + np.asarray(value, float))
+            else:
+                coordinates.append(np.arange(3) + offsets[value])
+                base.append(references[value])
+        indices.append(chain)
+    contact = BristleContact(
+        chains=Chains.from_polylines(indices, radii), law=law,
+        coordinates=np.array(coordinates, int), base=np.array(base, float), size=total,
+        system_indices=np.zeros(total, int))
+    empty = exu.MatrixContainer()
+    empty.SetWithSparseMatrix(np.zeros((0, 3)), total, total)
+    contact.object_number = mbs.AddObject(eii.ObjectGenericODE2(
+        nodeNumbers=nodes, massMatrix=empty, forceVector=[0.0] * total,
+        forceUserFunction=contact.force, jacobianUserFunction=contact.jacobian,
+        visualization=eii.VObjectGenericODE2(show=False)))
+    contact.nodes = nodes
+    return contact
+
+
+def locate_in_system(mbs, contact: BristleContact) -> None:
+    """Store where the object's coordinates sit in the system's ODE2 vector (after
+    ``Assemble``), for :meth:`BristleContact.sample`."""
+    indices = []
+    for node in contact.nodes:
+        start = mbs.GetNodeODE2Index(node)
+        indices += range(start, start + _position_block(mbs, node)[0])
+    contact.system_indices = np.array(indices, int)

@@ -1,0 +1,67 @@
+"""Contact between bristles in Exudyn (exubrush.contact.exudyn_between): a bristle pushed
+against its neighbour against beam theory, and a tuft solved as one group."""
+
+import json
+
+import numpy as np
+import pytest
+
+from exubrush.models.geometry import BristleGeometry
+from exubrush.models.sections import section_properties
+from exubrush.parameters.case import BUILT_IN_MATERIALS, BristleContactLaw
+from exubrush.statics import pushed_pair
+
+D, L, GAP = 0.2, 10.0, 0.01  # mm: nylon filaments 10 mm long, 10 µm apart
+NYLON = BUILT_IN_MATERIALS["nylon"]
+UPRIGHT = np.eye(3)[:, [2, 0, 1]]  # bristle x along z
+
+
+def _pair():
+    section = section_properties("circle", D, D)
+    return tuple(BristleGeometry(root=np.array([x, 0.0, 0.0]), frame=UPRIGHT, length=L,
+                                 tip_radius=D / 2, section=section, width=D, height=D,
+                                 shape="circle", material=NYLON)
+                 for x in (0.0, D + GAP))
+
+
+def test_a_pushed_filament_shares_its_load_with_its_neighbour_as_beam_theory_says():
+    # small deflections (2 % of L): once the gap is closed at the tips, the contact force F
+    # bends the second, P − F the first: (P − F) L³/3EI − F L³/3EI = gap
+    bristles = _pair()
+    load = 2e-4  # N
+    tips, deepest, completed = pushed_pair(bristles, np.array([load, 0.0, 0.0]),
+                                           BristleContactLaw(), segments=12)
+    assert completed
+    flexibility = L**3 / (3.0 * NYLON.youngs_modulus * bristles[0].section.second_moment_y)
+    contact = (load - GAP / flexibility) / 2.0
+    second = tips[1, 0] - (D + GAP)
+    first = tips[0, 0]
+    # 1 %: the issue's bound; beam theory neglects the 2 % deflection's geometric effect
+    assert second == pytest.approx(contact * flexibility, rel=0.01)
+    assert first == pytest.approx((load - contact) * flexibility, rel=0.01)
+    assert deepest < 0.05 * D
+
+
+def test_a_filament_pushed_far_never_overlaps_its_neighbour_by_more_than_5_percent():
+    tips, deepest, completed = pushed_pair(_pair(), np.array([2e-3, 0.0, 0.0]),
+                                           BristleContactLaw(), segments=6)
+    assert completed
+    assert tips[0, 0] > 0.2 * L  # bent well beyond the linear range
+    assert deepest < 0.05 * D
+
+
+def test_a_tuft_with_contact_is_one_group_and_reports_its_contacts(cli, tmp_path):
+    case = tmp_path / "tuft7.toml"
+    case.write_text('name = "tuft7"\n[head]\nlayout = "tufts"\n[[head.tufts]]\n'
+                    'filaments = 7\ndiameter = "0.8 mm"\n[motion]\n'
+                    'interaction_distance = "8.4 mm"\napproach_duration = "0.3 s"\n'
+                    'hold_duration = "0.05 s"\n[contact]\nbetween_bristles = true\n')
+    done = cli("run", str(case), "--periods", "0.02", "--quiet", "--out", str(tmp_path / "r"))
+    assert done.returncode == 0, done.stderr
+    derived = json.loads((tmp_path / "r" / "run.json").read_text())["derived"]
+    assert derived["bristle_groups"] == [list(range(7))]
+    assert derived["systems_solved"] == 1
+    # seven hexagonal filaments touching all along: 12 neighbour pairs, several segment
+    # pairs each
+    assert derived["bristle_contacts_max"] >= 12
+    assert derived["bristle_overlap_max_mm"] < 0.05 * D

@@ -1,0 +1,151 @@
+"""Contact between bristles (exubrush.contact.between) against geometry and the law."""
+
+import numpy as np
+import pytest
+
+from exubrush.contact.between import (
+    PARALLEL,
+    SOFT_DEPTH,
+    Chains,
+    candidate_pairs,
+    contact_forces,
+    contact_parameters,
+    pair_corner_forces,
+    point_force_derivatives,
+    point_forces,
+)
+from exubrush.parameters.case import BristleContactLaw
+
+LAW = BristleContactLaw()
+FRICTIONLESS = LAW.replace(friction=0.0)
+R = 0.1  # mm, a filament's radius
+
+
+def _segment_distance_brute(a0, a1, b0, b1, samples=1001):
+    s = np.linspace(0.0, 1.0, samples)
+    pa = a0 + s[:, None] * (a1 - a0)
+    pb = b0 + s[:, None] * (b1 - b0)
+    return np.min(np.linalg.norm(pa[:, None] - pb[None], axis=2))
+
+
+def test_crossing_segments_touch_at_their_closest_points():
+    rng = np.random.default_rng(3)
+    for _ in range(60):
+        a0, a1, b0, b1 = rng.normal(size=(4, 3))
+        points, weight = contact_parameters(a0, a1, b0, b1)
+        if weight < 1.0:
+            continue  # near-parallel: not the closest points by design
+        s, t = points[0]
+        found = np.linalg.norm((b0 + t * (b1 - b0)) - (a0 + s * (a1 - a0)))
+        # the brute force samples the segments every 1/2000: its minimum lies above the
+        # exact one by at most the sampling's error, of order (1/1000)² for smooth minima
+        assert found <= _segment_distance_brute(a0, a1, b0, b1) + 1e-9
+
+
+def _side_by_side(angle, gap=0.0, length=1.0):
+    """Segment a along x, segment b beside it at 2R + gap in y, turned by angle about z."""
+    a0, a1 = np.zeros(3), np.array([length, 0.0, 0.0])
+    b0 = np.array([0.0, 2 * R + gap, 0.0])
+    b1 = b0 + length * np.array([np.cos(angle), np.sin(angle), 0.0])
+    return a0, a1, b0, b1
+
+
+def test_side_by_side_segments_share_the_load_between_the_ends_of_their_common_stretch():
+    a0, a1, b0, b1 = _side_by_side(0.0, gap=-0.001)
+    points, weight = contact_parameters(a0, a1, b0, b1)
+    assert weight == 0.0
+    np.testing.assert_allclose(points[1:], [[0.0, 0.0], [1.0, 1.0]], atol=1e-12)
+
+
+def test_the_force_stays_continuous_as_segments_turn_from_side_by_side_to_crossing():
+    # b turns about the y axis through the point across a's middle: the lines stay 2R − δ
+    # apart at every angle, so the total force is the same whether it is carried by the
+    # side-by-side pair of points or by the crossing point, and through the blend
+    angles = np.linspace(0.0, 3 * PARALLEL[1], 301)
+    forces = []
+    for angle in angles:
+        direction = 0.5 * np.array([np.cos(angle), 0.0, np.sin(angle)])
+        centre = np.array([0.5, 2 * R - 0.004, 0.0])
+        x = np.array([[[0, 0, 0], [1, 0, 0], centre - direction, centre + direction]], float)
+        f, _ = pair_corner_forces(x, np.zeros_like(x), np.array([[R, R]]),
+                                  np.zeros((1, 4), bool), FRICTIONLESS)
+        forces.append(f[0])
+    forces = np.array(forces)
+    soft = SOFT_DEPTH * 2 * R
+    expected = FRICTIONLESS.stiffness * (0.004 - 0.5 * soft)
+    np.testing.assert_allclose(forces[:, 2:, 1].sum(axis=1), expected, rtol=1e-12)
+    # the split between b's ends changes smoothly: no jump between angles 1e-3 rad apart
+    # larger than 1 % of the force
+    assert np.abs(np.diff(forces, axis=0)).max() < 0.01 * expected
+
+
+def test_a_pressed_pair_pushes_apart_with_equal_and_opposite_forces_and_no_moment():
+    x = np.array([_side_by_side(-0.3, gap=-0.004)])
+    v = np.random.default_rng(1).normal(size=x.shape)
+    f, overlap = pair_corner_forces(x, v, np.array([[R, R]]), np.zeros((1, 4), bool),
+                                    FRICTIONLESS)
+    assert overlap[0] > 0
+    np.testing.assert_allclose(f[0].sum(axis=0), 0.0, atol=1e-15)
+    moment = np.cross(x[0], f[0]).sum(axis=0)
+    np.testing.assert_allclose(moment, 0.0, atol=1e-15)  # the force acts along the normal
+    assert f[0, 2:, 1].sum() > 0  # b (at larger y) is pushed towards +y
+
+
+def test_the_normal_force_follows_the_penalty_beyond_the_soft_depth():
+    # two crossing segments, b above a by 2R − depth: f = k (depth − δ/2) with δ = soft depth
+    depth = 0.01
+    x = np.array([[[-1, 0, 0], [1, 0, 0], [0, -1, 2 * R - depth], [0, 1, 2 * R - depth]]],
+                 float)
+    f, overlap = pair_corner_forces(x, np.zeros_like(x), np.array([[R, R]]),
+                                    np.zeros((1, 4), bool), LAW)
+    soft = SOFT_DEPTH * 2 * R
+    assert overlap[0] == pytest.approx(depth, rel=1e-12)
+    assert f[0, 2:, 2].sum() == pytest.approx(LAW.stiffness * (depth - 0.5 * soft), rel=1e-12)
+    # centred crossing: each end of each segment takes half
+    np.testing.assert_allclose(f[0, :, 2], np.array([-1, -1, 1, 1]) * f[0, 3, 2], rtol=1e-12)
+
+
+def test_friction_opposes_sliding_and_saturates_at_mu_times_the_normal_force():
+    x = np.array([[[-1, 0, 0], [1, 0, 0], [0, -1, 2 * R - 0.01], [0, 1, 2 * R - 0.01]]],
+                 float)
+    v = np.zeros_like(x)
+    v[0, 2:, 0] = 5.0  # b slides along +x at 5 mm/s, above the regularising speed
+    f, _ = pair_corner_forces(x, v, np.array([[R, R]]), np.zeros((1, 4), bool), LAW)
+    on_b = f[0, 2:].sum(axis=0)
+    assert on_b[0] == pytest.approx(-LAW.friction * on_b[2], rel=1e-12)
+
+
+def test_a_contact_at_a_joint_counts_once():
+    # chain a: three points along x with a joint at the origin; b crosses above the joint
+    chains = Chains.from_polylines([[0, 1, 2], [3, 4]], [R, R])
+    points = np.array([[-1, 0, 0], [0, 0, 0], [1, 0, 0], [0, -1, 0.19], [0, 1, 0.19]], float)
+    pairs = candidate_pairs(chains, points)
+    assert sorted(map(tuple, pairs)) == [(0, 2), (1, 2)]
+    contacts = contact_forces(chains, points, np.zeros_like(points), pairs, LAW)
+    total_on_b = point_forces(contacts, 5)[3:].sum(axis=0)
+    soft = SOFT_DEPTH * 2 * R
+    assert total_on_b[2] == pytest.approx(LAW.stiffness * (0.01 - 0.5 * soft), rel=1e-9)
+
+
+def test_segments_of_one_bristle_are_never_candidates():
+    chains = Chains.from_polylines([[0, 1, 2, 3]], [R])
+    points = np.array([[0, 0, 0], [0.1, 0, 0], [0.1, 0.05, 0], [0, 0.05, 0]], float)
+    assert len(candidate_pairs(chains, points)) == 0
+
+
+def test_derivatives_match_the_stiffness_of_the_law():
+    x = np.array([[-1, 0, 0], [1, 0, 0], [0, -1, 2 * R - 0.01], [0, 1, 2 * R - 0.01]], float)
+    chains = Chains.from_polylines([[0, 1], [2, 3]], [R, R])
+    contacts = contact_forces(chains, x, np.zeros_like(x), np.array([[0, 1]]), FRICTIONLESS)
+    rows, columns, by_position, by_velocity = point_force_derivatives(
+        chains, x, np.zeros_like(x), contacts, FRICTIONLESS)
+    stiffness = np.zeros((12, 12))
+    np.add.at(stiffness, (rows, columns), by_position)
+    # lifting b's two points by dz lowers the overlap by dz: b's z force drops by k dz
+    lift_b = stiffness[np.ix_([8, 11], [8, 11])].sum()
+    assert lift_b == pytest.approx(-FRICTIONLESS.stiffness, rel=1e-6)
+    damping = np.zeros((12, 12))
+    np.add.at(damping, (rows, columns), by_velocity)
+    # central differences of a linear term: exact but for rounding
+    assert damping[np.ix_([8, 11], [8, 11])].sum() == pytest.approx(-FRICTIONLESS.damping,
+                                                                    rel=1e-6)
