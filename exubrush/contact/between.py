@@ -15,7 +15,8 @@ velocity v_t, regularised below the speed v_r: f_t = −μ f_n v_t / max(|v_t|, 
 force acts at the two closest points with opposite signs and is handed to each segment's
 end points in proportion to the closest point's position on it ((1 − s), s), which keeps
 its resultant and its moment about any point. A contact at a joint of a chain is found by
-both segments that meet there; each then counts half.
+both segments that meet there; each then counts half, rising smoothly to whole within a
+tenth of a segment from the joint.
 """
 
 from __future__ import annotations
@@ -30,6 +31,8 @@ from exubrush.parameters.case import BristleContactLaw
 # angles between two segments [rad] below which they count as parallel, above which as
 # crossing; blended in between (contact_parameters)
 PARALLEL = (0.02, 0.1)
+# share of a segment's length over which a contact's weight rises from 1/2 at a joint to 1
+JOINT_BLEND = 0.1
 # depth over which the normal force grows from zero slope to the penalty's, as a share of
 # the two radii: filaments of a tuft touch all along at rest, and a kink in the force at
 # zero overlap there kept Newton from converging (docs/tufts.md)
@@ -238,9 +241,13 @@ def _law_force(overlap, normal, relative, soft, law: BristleContactLaw):
 
 
 def _joint_weight(parameter, inner_start, inner_end):
-    """1/2 where the closest point is a joint shared with the chain's next segment."""
-    at_joint = ((parameter == 0.0) & inner_start) | ((parameter == 1.0) & inner_end)
-    return np.where(at_joint, 0.5, 1.0)
+    """1/2 where the contact point is a joint shared with the chain's next segment (both
+    segments find it), rising smoothly to 1 within JOINT_BLEND of the segment's length
+    from it, so that the force does not jump as the point leaves the joint."""
+    distance = np.where(inner_start, parameter, np.inf)
+    distance = np.minimum(distance, np.where(inner_end, 1.0 - parameter, np.inf))
+    x = np.clip(distance / JOINT_BLEND, 0.0, 1.0)
+    return 0.5 + 0.5 * x * x * (3.0 - 2.0 * x)
 
 
 def _corners(chains: Chains, pairs: np.ndarray):
