@@ -3,7 +3,8 @@ the slow tier; ``python -m pytest -m "not slow"`` leaves them out."""
 
 import pytest
 
-SLOW_NOTEBOOKS = {"howell_parameters.ipynb", "sliding_bristle.ipynb", "surfaces.ipynb"}
+SLOW_NOTEBOOKS = {"howell_parameters.ipynb", "sliding_bristle.ipynb", "surfaces.ipynb",
+                  "bristle_contact.ipynb"}
 
 
 def pytest_collection_modifyitems(items):
