@@ -154,3 +154,26 @@ def test_sigterm_to_the_process_group_then_resume_equals_an_uninterrupted_run(tm
     assert "resuming:" in resumed.stderr
     assert ((tmp_path / "cut" / "forces.csv").read_bytes()
             == (tmp_path / "whole" / "forces.csv").read_bytes())
+
+
+@pytest.mark.parametrize("table, message", [
+    (None, "head.tuft_table '{folder}/tufts.csv' does not exist"),
+    ("x,y [mm]\n0,0\n", "column 'x' has no unit; write 'x [mm]'"),
+    ("x [mm],y [mm],bristle_colour\n0,0,red\n", "unknown column 'bristle_colour'"),
+    ("x [mm],y [mm]\n0,0\n0.5,0\n", "overlap by 1.1 mm"),
+    ("x [mm],y [mm],filaments,diameter [mm]\n0,0,37,1\n", "37 filaments of 0.2 mm need a "
+     "tuft of 1.4 mm in hexagonal packing, the tuft is 1 mm"),
+])
+def test_a_bad_tuft_table_ends_in_one_line_with_exit_2_and_nothing_written(tmp_path, table,
+                                                                             message):
+    (tmp_path / "head.toml").write_text('name = "t"\n[head]\nlayout = "tufts"\n'
+                                        'tuft_table = "tufts.csv"\n')
+    if table is not None:
+        (tmp_path / "tufts.csv").write_text(table)
+    before = _tree(tmp_path)
+    done = _run(tmp_path, "run", "head.toml", "--out", "out")
+    assert done.returncode == 2, done.stderr
+    assert message.format(folder=tmp_path) in done.stderr, done.stderr
+    assert "Traceback" not in done.stderr
+    assert len(done.stderr.strip().splitlines()) == 1, done.stderr
+    assert _tree(tmp_path) == before
