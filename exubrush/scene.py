@@ -19,6 +19,7 @@ from exudyn.rigidBodyUtilities import InertiaCuboid
 from exubrush.contact.exudyn_between import (
     BristleContact,
     add_bristle_contact,
+    contact_refresh,
     locate_in_system,
 )
 from exubrush.contact.exudyn_contact import (
@@ -312,6 +313,7 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
             [0.5 * max(b.width, b.height) for b in bristles], case.contact.bristles)
         scene.keep_alive.append(scene.bristle_contact)
         scene.step_hooks.append(_contact_sampler(scene.bristle_contact, case.output.interval))
+        scene.step_hooks.append(contact_refresh(scene.bristle_contact, case.solver.step_size))
     mbs.Assemble()
     if scene.bristle_contact is not None:
         locate_in_system(mbs, scene.bristle_contact)

@@ -57,25 +57,31 @@ class BristleContact:
     object_number: int = -1
     counts: list = field(default_factory=list)
     overlaps: list = field(default_factory=list)
+    # segment pairs that may touch during the coming step (refresh); None: search every call
+    candidates: np.ndarray | None = None
 
     def points(self, q: np.ndarray) -> np.ndarray:
         """Point positions [mm] (or velocities [mm/s], with base 0) from the object's q."""
         return self.base + q[self.coordinates]
 
-    def _contacts(self, q, q_t):
+    def _contacts(self, q, q_t, search: bool = False):
         points = self.points(q)
         velocities = q_t[self.coordinates]
         if not np.all(np.abs(points) < DIVERGED):  # a diverged Newton iterate, rejected anyway
             pairs = np.zeros((0, 2), int)
-        else:
+        elif search or self.candidates is None:
             pairs = candidate_pairs(self.chains, points)
+        else:
+            pairs = self.candidates
         return points, velocities, contact_forces(self.chains, points, velocities, pairs,
                                                   self.law)
 
     def force(self, mbs, t, item, q, q_t):
         """Exudyn force user function: the contact forces on the object's coordinates."""
-        _, _, contacts = self._contacts(np.asarray(q), np.asarray(q_t))
         out = np.zeros(self.size)
+        if self.candidates is not None and not len(self.candidates):
+            return out
+        _, _, contacts = self._contacts(np.asarray(q), np.asarray(q_t))
         np.add.at(out, self.coordinates.ravel(),
                   point_forces(contacts, len(self.base)).ravel())
         return out
@@ -83,8 +89,11 @@ class BristleContact:
     def jacobian(self, mbs, t, item, q, q_t, f_position, f_velocity):
         """Exudyn Jacobian user function: −(∂f/∂q · f_position + ∂f/∂q_t · f_velocity) of
         the touching pairs, as sparse triplets in the object's coordinates."""
-        points, velocities, contacts = self._contacts(np.asarray(q), np.asarray(q_t))
         matrix = exu.MatrixContainer()
+        if self.candidates is not None and not len(self.candidates):
+            matrix.SetWithSparseMatrix(np.zeros((0, 3)), self.size, self.size)
+            return matrix
+        points, velocities, contacts = self._contacts(np.asarray(q), np.asarray(q_t))
         if not len(contacts.pairs):
             matrix.SetWithSparseMatrix(np.zeros((0, 3)), self.size, self.size)
             return matrix
@@ -96,14 +105,42 @@ class BristleContact:
                                    self.size, self.size)
         return matrix
 
+    def _state(self, mbs):
+        data = mbs.systemData
+        return (np.asarray(data.GetODE2Coordinates())[self.system_indices],
+                np.asarray(data.GetODE2Coordinates_t())[self.system_indices])
+
+    def refresh(self, mbs, reach: float) -> None:
+        """Before a step: the segment pairs that can touch within it, from the system's
+        current (converged) state, their capsules grown by ``reach`` [mm]
+        (:func:`contact_refresh`)."""
+        q, q_t = self._state(mbs)
+        points = self.points(q)
+        if not np.all(np.abs(points) < DIVERGED):
+            self.candidates = None
+            return
+        self.candidates = candidate_pairs(self.chains, points, margin=reach)
+
     def sample(self, mbs) -> None:
         """Record the contacts of the system's current (converged) state."""
-        data = mbs.systemData
-        q = np.asarray(data.GetODE2Coordinates())[self.system_indices]
-        q_t = np.asarray(data.GetODE2Coordinates_t())[self.system_indices]
-        _, _, contacts = self._contacts(q, q_t)
+        q, q_t = self._state(mbs)
+        _, _, contacts = self._contacts(q, q_t, search=True)
         self.counts.append(len(contacts.pairs))
         self.overlaps.append(float(contacts.overlap.max()) if len(contacts.pairs) else 0.0)
+
+
+def contact_refresh(contact: BristleContact, step_size: float, margin: float = 0.1):
+    """Step hook: the candidate pairs for the coming step (BristleContact.refresh), with the
+    capsules grown by ``margin`` [mm] plus twice the distance the fastest point covers in
+    one largest step ``step_size`` [s] at its current speed: pairs farther apart than
+    that cannot touch before the next refresh, so the force function need not search."""
+
+    def refresh(mbs, t):
+        q_t = np.asarray(mbs.systemData.GetODE2Coordinates_t())[contact.system_indices]
+        speed = np.linalg.norm(q_t[contact.coordinates], axis=1).max(initial=0.0)
+        contact.refresh(mbs, margin + 2.0 * speed * step_size)
+
+    return refresh
 
 
 def _position_block(mbs, node) -> tuple[int, np.ndarray]:
