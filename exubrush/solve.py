@@ -25,6 +25,7 @@ from exubrush.solution_files import read_coordinate_file
 from exubrush.solver import dynamic_settings, record_coordinates
 
 PROGRESS_STEP = 0.05  # s of simulated time between two checks (progress, stop, divergence)
+STOP_CHECK_INTERVAL = 0.5  # s of wall time between two looks for a stop request
 
 
 class SolveMonitor(Protocol):
@@ -61,10 +62,19 @@ def solve_group(prepared: PreparedCase, selection: tuple[int, ...],
         record_coordinates(settings, coordinates_file, case.output.interval)
     bound = prepared.force_bound(selection)
     reported = [0.0]
+    asked = [time.monotonic()]
     status = {"reason": ""}
 
     def before_step(mbs, t):
         scene.run_step_hooks(mbs, t)
+        # a stop is also looked for by wall time: a solve crawling through tiny steps may
+        # take minutes for one PROGRESS_STEP of simulated time (a SIGTERM went unheard for
+        # 40 minutes in a tuft stuck at 1e-9 s steps)
+        if monitor is not None and time.monotonic() - asked[0] >= STOP_CHECK_INTERVAL:
+            asked[0] = time.monotonic()
+            if monitor.stop_requested():
+                status["reason"] = INTERRUPTED
+                return False
         if t - reported[0] >= PROGRESS_STEP:
             if monitor is not None and monitor.stop_requested():
                 status["reason"] = INTERRUPTED
