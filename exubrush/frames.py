@@ -4,7 +4,9 @@ Each run is drawn in two views, seen from the side (slide axis horizontal) and f
 end (the other horizontal axis), in a frame that moves with the head: the horizontal
 origin is the centre of the bristle roots, the surface is z = 0. A PRB bristle is drawn as
 root, characteristic pivot and tip; a DFM bristle through its N nodes; each as a tube as
-thick as its section seen in that view (a round filament's diameter).
+thick as its section seen in that view (a round filament's diameter). Where the run let
+bristles touch each other (contact.between_bristles), the places they touch in a frame are
+marked with red crosses (found again from the stored shapes, exubrush.contact.between).
 """
 
 from __future__ import annotations
@@ -16,9 +18,10 @@ import numpy as np
 from matplotlib.collections import PatchCollection, PolyCollection
 from matplotlib.patches import Circle
 
+from exubrush.contact.between import Chains, contact_locations
 from exubrush.files import atomic_file
 from exubrush.mesh import MeshError, MeshSurface
-from exubrush.parameters.case import Surface
+from exubrush.parameters.case import BristleContactLaw, Surface
 from exubrush.plotting import figure
 from exubrush.results import ResultsError, read_results
 from exubrush.surfaces import height, to_surface_frame
@@ -49,6 +52,8 @@ class RunShapes:
     mesh : MeshSurface or None
         Its triangle mesh (surface.kind "mesh"; None also when the file is gone: the
         surface is then not drawn).
+    between : BristleContactLaw or None
+        The law of contact between bristles, if the run had it (contacts are marked).
     centre : ndarray (n_t, 3)
         The roots' centre at each sample, head frame fixed to the surface (z = 0) [mm].
     """
@@ -62,6 +67,7 @@ class RunShapes:
     surface: Surface
     centre: np.ndarray
     mesh: MeshSurface | None = None
+    between: BristleContactLaw | None = None
 
 
 def load_shapes(directory: str | Path) -> RunShapes:
@@ -93,7 +99,8 @@ def load_shapes(directory: str | Path) -> RunShapes:
                      np.array([b.tip_radius for b in bristles]),
                      np.array([[0.5 * b.width, 0.5 * b.height] for b in bristles]),
                      case.motion.direction,
-                     case.surface, centre, mesh)
+                     case.surface, centre, mesh,
+                     case.contact.bristles if case.contact.between_bristles else None)
 
 
 def nearest_samples(run: RunShapes, times) -> list[int]:
@@ -121,6 +128,14 @@ def tube_outline(points: np.ndarray, radius: float) -> np.ndarray:
     return np.vstack([points + radius * normals, (points - radius * normals)[::-1]])
 
 
+def _touching(lines: np.ndarray, radii: np.ndarray, law: BristleContactLaw) -> np.ndarray:
+    """Where the bristles of one shape sample (bristles, points, 3) touch [mm]."""
+    count, points = lines.shape[:2]
+    chains = Chains.from_polylines(
+        [list(range(b * points, (b + 1) * points)) for b in range(count)], list(radii))
+    return contact_locations(chains, lines.reshape(-1, 3), law)
+
+
 def _draw_view(axis, run: RunShapes, sample: int, horizontal: int, limits) -> None:
     lines = run.lines[sample]
     # a bristle's thickness seen in this view is its section's extent along the view's
@@ -129,6 +144,9 @@ def _draw_view(axis, run: RunShapes, sample: int, horizontal: int, limits) -> No
     axis.add_collection(PolyCollection(
         [tube_outline(line[:, [horizontal, 2]], r) for line, r in zip(lines, radii, strict=True)],
         facecolors="tab:blue", edgecolors="none", alpha=0.45))
+    if run.between is not None:
+        touching = _touching(lines, run.half_width.max(axis=1), run.between)
+        axis.plot(touching[:, horizontal], touching[:, 2], "x", color="tab:red", ms=4, mew=1.0)
     tips = [Circle((p[horizontal], p[2]), r) for p, r in zip(lines[:, -1], run.tip_radius,
                                                             strict=True)]
     axis.add_collection(PatchCollection(tips, facecolor="tab:orange", edgecolor="0.3",

@@ -324,3 +324,16 @@ def point_force_derivatives(chains: Chains, points: np.ndarray, velocities: np.n
     rows = np.broadcast_to(coordinate[:, :, :, None, None], by_position.shape)
     columns = np.broadcast_to(coordinate[:, None, None, :, :], by_position.shape)
     return rows.ravel(), columns.ravel(), by_position.ravel(), by_velocity.ravel()
+
+
+def contact_locations(chains: Chains, points: np.ndarray, law: BristleContactLaw) -> np.ndarray:
+    """Where the bristles touch at the given point positions [mm]: the midpoint of each
+    touching pair's closest points, shape (m, 3) (for drawing)."""
+    contacts = contact_forces(chains, points, np.zeros_like(points),
+                              candidate_pairs(chains, points), law)
+    if not len(contacts.pairs):
+        return np.zeros((0, 3))
+    x = points[contacts.corners]
+    s, t = contact_parameters(x[:, 0], x[:, 1], x[:, 2], x[:, 3])[0][0]
+    return 0.5 * ((x[:, 0] + s[:, None] * (x[:, 1] - x[:, 0]))
+                  + (x[:, 2] + t[:, None] * (x[:, 3] - x[:, 2])))

@@ -149,3 +149,14 @@ def test_derivatives_match_the_stiffness_of_the_law():
     # central differences of a linear term: exact but for rounding
     assert damping[np.ix_([8, 11], [8, 11])].sum() == pytest.approx(-FRICTIONLESS.damping,
                                                                     rel=1e-6)
+
+
+def test_a_contact_is_located_halfway_between_the_closest_points():
+    from exubrush.contact.between import contact_locations
+
+    chains = Chains.from_polylines([[0, 1], [2, 3]], [R, R])
+    points = np.array([[-1, 0, 0], [1, 0, 0], [0.25, -1, 0.15], [0.25, 1, 0.15]], float)
+    np.testing.assert_allclose(contact_locations(chains, points, LAW), [[0.25, 0.0, 0.075]],
+                               atol=1e-12)
+    apart = points + np.array([0.0, 0.0, 1.0]) * np.array([[0], [0], [1], [1]])
+    assert contact_locations(chains, apart, LAW).shape == (0, 3)
