@@ -14,8 +14,9 @@ with zero slope) and h = min(overlap/δ, 1); and Coulomb friction against the ta
 velocity v_t, regularised below the speed v_r: f_t = −μ f_n v_t / max(|v_t|, v_r). The
 force acts at the two closest points with opposite signs and is handed to each segment's
 end points in proportion to the closest point's position on it ((1 − s), s), which keeps
-its resultant and its moment about any point. A contact at a joint of a chain is found by
-both segments that meet there; each then counts half.
+its resultant and its moment about any point. A crossing contact at a joint of a chain is
+found by both segments that meet there; each then counts half. Side-by-side segments count
+in proportion to the stretch they share.
 """
 
 from __future__ import annotations
@@ -202,16 +203,21 @@ def pair_corner_forces(x: np.ndarray, v: np.ndarray, radii: np.ndarray, inner: n
     # the side-by-side ends' shares, from their own overlaps
     depth_low, depth_high = (np.maximum(reach - d, 0.0) + 0.1 * soft for _, d in gaps[1:])
     low_share = depth_low / (depth_low + depth_high)
-    shares = (crossing, (1.0 - crossing) * low_share, (1.0 - crossing) * (1.0 - low_share))
+    # a side-by-side contact counts in proportion to the stretch the two segments share
+    # (the mean of its share of each): chains side by side then count each stretch once,
+    # however their joints fall, and a pair that shares a joint only counts nothing
+    (s_low, t_low), (s_high, t_high) = points[1], points[2]
+    side = (1.0 - crossing) * 0.5 * (np.abs(s_high - s_low) + np.abs(t_high - t_low))
+    shares = (crossing, side * low_share, side * (1.0 - low_share))
     relative = sum(share[:, None] * _relative_velocity(v, s, t)
                    for (s, t), share in zip(points, shares, strict=True))
     force = _law_force(overlap, normal, relative, soft, law)
     touching = (overlap > 0.0) & (distance > 0.0)
     force = np.where(touching[:, None], force, 0.0)
     forces = np.zeros(x.shape)
-    for (s, t), share in zip(points, shares, strict=True):
-        weight = share * (_joint_weight(s, inner[:, 0], inner[:, 1])
-                          * _joint_weight(t, inner[:, 2], inner[:, 3]))
+    for index, ((s, t), share) in enumerate(zip(points, shares, strict=True)):
+        weight = share if index else share * (_joint_weight(s, inner[:, 0], inner[:, 1])
+                                              * _joint_weight(t, inner[:, 2], inner[:, 3]))
         corner_shares = np.column_stack([-(1.0 - s), -s, 1.0 - t, t]) * weight[:, None]
         forces += corner_shares[:, :, None] * force[:, None, :]
     return forces, overlap

@@ -59,8 +59,9 @@ def test_side_by_side_segments_share_the_load_between_the_ends_of_their_common_s
 
 def test_the_force_stays_continuous_as_segments_turn_from_side_by_side_to_crossing():
     # b turns about the y axis through the point across a's middle: the lines stay 2R − δ
-    # apart at every angle, so the total force is the same whether it is carried by the
-    # side-by-side pair of points or by the crossing point, and through the blend
+    # apart at every angle, so the total force is that of the overlap, carried by the
+    # crossing point or, side by side, in proportion to the stretch a and b share (cos of
+    # the angle over most of it)
     angles = np.linspace(0.0, 3 * PARALLEL[1], 301)
     forces = []
     for angle in angles:
@@ -73,7 +74,8 @@ def test_the_force_stays_continuous_as_segments_turn_from_side_by_side_to_crossi
     forces = np.array(forces)
     soft = SOFT_DEPTH * 2 * R
     expected = FRICTIONLESS.stiffness * (0.004 - 0.5 * soft)
-    np.testing.assert_allclose(forces[:, 2:, 1].sum(axis=1), expected, rtol=1e-12)
+    # within the blend (angles up to 0.1 rad) the shared stretch is cos(angle) >= 0.995
+    np.testing.assert_allclose(forces[:, 2:, 1].sum(axis=1), expected, rtol=0.005)
     # the split between b's ends changes smoothly: no jump between angles 1e-3 rad apart
     # larger than 1 % of the force
     assert np.abs(np.diff(forces, axis=0)).max() < 0.01 * expected
