@@ -141,9 +141,13 @@ def test_a_single_process_run_stops_cleanly_on_ctrl_c_or_kill(tmp_path, signal_n
     # one bristle: solved in the main process, where the signal lands inside Exudyn's solve
     process = subprocess.Popen(
         [sys.executable, "-m", "exubrush", "run", "orthogonal", "--segments", "2", "--quiet",
-         "--periods", "20", "--set", "head.rows=1", "--set", "head.columns=1", "--out", str(out)],
+         "--periods", "300", "--set", "head.rows=1", "--set", "head.columns=1", "--out",
+         str(out)],
         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
-    time.sleep(6.0)  # past start-up, well inside the solve (20 periods take over a minute)
+    # past start-up, well inside the solve: 20 periods of this bristle took 4.7 s of solve
+    # on this 2-core machine (6.5 s with start-up), so the test's former 20 periods could
+    # end before the signal; 300 take over a minute
+    time.sleep(6.0)
     assert process.poll() is None, "the run ended before the signal"
     process.send_signal(signal_number)
     _, stderr = process.communicate(timeout=120)
