@@ -247,8 +247,8 @@ class BristleContactLaw(Parameters):
     normal of the touching surfaces with damping, and Coulomb friction regularised below a
     sliding speed (docs/tufts.md, "Contact between bristles")."""
 
-    # a numerical choice (docs/tufts.md): the deepest overlap in a pressed 7-filament tuft
-    # was 3.3 % of the diameter at 50 N/mm, 5.1 % at 20; 100 N/mm doubled the run time
+    # a numerical choice (docs/tufts.md): the deepest overlap in a 7-filament tuft over a
+    # period was 3.8 % of the diameter at 50 N/mm, 5.6 % at 25; 100 N/mm doubled the run time
     stiffness: float = param(50.0, "penalty stiffness per contact", "N/mm", above=0.0)
     # about critical damping 2√(k m) of one DFM segment of a nylon filament (1e-4) or of a
     # silicone blade (3e-4)
