@@ -150,6 +150,7 @@ def prepare(case: Case) -> PreparedCase:
         except MeshError as err:
             raise ParameterError(str(err)) from None
     reaching = surface_reach(case, bristles, motion, mesh)
+    groups = bristle_groups(case, bristles)
     if not any(reaching):
         s = case.surface
         raise ParameterError(
@@ -165,11 +166,11 @@ def prepare(case: Case) -> PreparedCase:
         prb=prb_parameters(case) if case.model.kind == "prb" else None,
         friction_window=friction_window(case, motion),
         force_limits=static_force_limits(case, bristles),
-        groups=bristle_groups(case, bristles),
+        groups=groups,
         work=work,
         inputs=input_digests(motion, mesh),
         warnings=tuple(motion_warnings(case, motion)) + tuple(
-            unreachable_tufts(case, bristles, reaching)),
+            unreachable_tufts(case, bristles, reaching)) + tuple(coupled_warning(case, groups)),
         reaching=reaching,
         mesh=mesh,
     )
@@ -232,6 +233,17 @@ def unreachable_tufts(case: Case, bristles, reaching: tuple[bool, ...]) -> list[
     return [f"head: {name} cannot reach the surface at motion.interaction_distance = "
             f"{case.motion.interaction_distance:g} mm: its filaments never touch it"
             for name, reached in zip(names, reaches, strict=True) if not reached]
+
+
+def coupled_warning(case: Case, groups) -> list[str]:
+    """What contact between bristles will cost: the size of the largest system, and the
+    measured time of a small one (validation/benchmarks/README.md)."""
+    largest = max((len(g) for g in groups), default=0)
+    if not case.contact.between_bristles or largest < 2:
+        return []
+    return [f"contact.between_bristles: {len(groups)} system(s), the largest of {largest} "
+            "bristles that can touch, each solved on one core; contact between bristles is "
+            "slow (7 touching filaments took 147 s per slide period, 5 s without)"]
 
 
 def _refuse(problems: list[str]) -> None:

@@ -166,5 +166,14 @@ def test_groups_that_interleave_keep_ascending_indices():
     assert touching_groups(far) == ((0, 2), (1, 3))
 
 
+def test_a_run_with_contact_between_bristles_is_warned_of_its_cost():
+    prepared = prepare(load_case("tuft", ["contact.between_bristles=true"]))
+    assert prepared.groups == (tuple(range(37)),)
+    assert prepared.warnings == (
+        "contact.between_bristles: 1 system(s), the largest of 37 bristles that can touch, "
+        "each solved on one core; contact between bristles is slow (7 touching filaments "
+        "took 147 s per slide period, 5 s without)",)
+
+
 def test_without_contact_between_bristles_each_bristle_is_its_own_group():
     assert prepare(load_case("tuft")).groups == tuple((i,) for i in range(37))
