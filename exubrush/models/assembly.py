@@ -76,10 +76,16 @@ TIP_COLOUR = [0.85, 0.3, 0.2, 1.0]
 def piece_graphics(bristle: BristleGeometry, start: float, end: float,
                    tip: bool = False) -> list:
     """Drawing of the bristle from ``start`` to ``end`` [mm] along x of the bristle frame: a
-    box of the section's width and height (an elliptic section is drawn as its bounding
-    box), and the tip sphere centred at ``end`` if ``tip``. For Exudyn's renderer only."""
-    box = graphics.Brick(centerPoint=[0.5 * (start + end), 0.0, 0.0],
-                         size=[end - start, bristle.width, bristle.height], color=BRISTLE_COLOUR)
+    cylinder for a round filament, else a box of the section's width and height (an
+    elliptic section is drawn as its bounding box), and the tip sphere centred at ``end`` if
+    ``tip``. For Exudyn's renderer only."""
+    if bristle.shape == "circle":
+        box = graphics.Cylinder(pAxis=[start, 0.0, 0.0], vAxis=[end - start, 0.0, 0.0],
+                                radius=0.5 * bristle.width, color=BRISTLE_COLOUR, nTiles=8)
+    else:
+        box = graphics.Brick(centerPoint=[0.5 * (start + end), 0.0, 0.0],
+                             size=[end - start, bristle.width, bristle.height],
+                             color=BRISTLE_COLOUR)
     if not tip:
         return [box]
     return [box, graphics.Sphere(point=[end, 0.0, 0.0], radius=bristle.tip_radius,
