@@ -67,8 +67,8 @@ class BristleContact:
     def _contacts(self, q, q_t, search: bool = False):
         points = self.points(q)
         velocities = q_t[self.coordinates]
-        if not np.all(np.abs(points) < DIVERGED):  # a diverged Newton iterate, rejected anyway
-            pairs = np.zeros((0, 2), int)
+        if not (np.all(np.abs(points) < DIVERGED) and np.all(np.isfinite(velocities))):
+            pairs = np.zeros((0, 2), int)  # a diverged Newton iterate, rejected anyway
         elif search or self.candidates is None:
             pairs = candidate_pairs(self.chains, points)
         else:
