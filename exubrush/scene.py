@@ -38,6 +38,7 @@ from exubrush.models.prb import add_prb_bristle, stub_graphics
 from exubrush.models.stiffness import buckling_load
 from exubrush.motion import HeadMotion
 from exubrush.prepared import PreparedCase
+from exubrush.solver import fresh_jacobian_after_step_change, linear_solver
 from exubrush.surfaces import orientation, tooth_pitch
 
 # the handle is a stiff block whose mass only enters the drive reaction, from which the
@@ -314,6 +315,8 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
         scene.keep_alive.append(scene.bristle_contact)
         scene.step_hooks.append(_contact_sampler(scene.bristle_contact, case.output.interval))
         scene.step_hooks.append(contact_refresh(scene.bristle_contact, case.solver.step_size))
+    if linear_solver(case.solver, scene.bristle_contact is not None) == "EigenSparse":
+        scene.step_hooks.append(fresh_jacobian_after_step_change())
     mbs.Assemble()
     if scene.bristle_contact is not None:
         locate_in_system(mbs, scene.bristle_contact)

@@ -77,6 +77,33 @@ def linear_solver(solver: Solver, touching: bool = False) -> str:
     return "EigenSparse" if solver.partition == "coupled" or touching else "EigenDense"
 
 
+def fresh_jacobian_after_step_change():
+    """Pre-step hook (mbs, t) that asks Exudyn for a new Newton Jacobian whenever the step
+    size differs from the last attempt's.
+
+    Exudyn's modified Newton keeps its factorised Jacobian across steps, and a step retried
+    with a smaller size starts from it too. Where that factorisation had failed (a singular
+    Jacobian), the retry solves with a matrix that was never factorised: the checked core
+    stops the run ("matrix is not factorized"), the fast core crashed (SIGSEGV after 21
+    minutes of a 19-filament tuft with contact between bristles). EigenSparse is exposed to
+    this, the dense solvers are not. A Jacobian made for another step size is also wrong in
+    its mass term (1/(β h²)), so a retry starts better with a new one: on a 7-filament tuft
+    (approach and 0.1 period) the run took 12,224 Jacobians and 107 s against 11,569 and
+    104 s without the hook.
+    """
+    last = [None]
+    start = exu.ConfigurationType.StartOfStep
+
+    def refresh(mbs, t):
+        step = t - mbs.systemData.GetTime(start)
+        # t and the step's start differ by rounding for one step size: a relative margin
+        if last[0] is not None and abs(step - last[0]) > 1e-9 * last[0]:
+            mbs.solverSignalJacobianUpdate = True
+        last[0] = step
+
+    return refresh
+
+
 def record_coordinates(settings: exu.SimulationSettings, path: str, period: float) -> None:
     """Let the solver write the ODE2 coordinates (no velocities, accelerations, algebraic or
     data coordinates) to the text solution file ``path`` every ``period`` [s]: the format
