@@ -1,4 +1,4 @@
-"""Contact between bristles (pure numpy, mm-N-s).
+"""Contact between bristles (mm-N-s).
 
 Geometry. Each bristle is a chain of capsules along its centreline: the polyline through
 its points (root, then the nodes of its model), every segment swept by a sphere of the
@@ -17,6 +17,9 @@ end points in proportion to the closest point's position on it ((1 − s), s), w
 its resultant and its moment about any point. A crossing contact at a joint of a chain is
 found by both segments that meet there; each then counts half. Side-by-side segments count
 in proportion to the stretch they share.
+
+The per-pair arithmetic is compiled (exubrush.contact.between_kernel); this module holds the
+chains, the broad phase and the array interface.
 """
 
 from __future__ import annotations
@@ -26,15 +29,22 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial import cKDTree
 
+from exubrush.contact.between_kernel import (  # noqa: F401  (PARALLEL, SOFT_DEPTH: the law's)
+    PARALLEL,
+    POSITION_STEP,
+    SOFT_DEPTH,
+    VELOCITY_STEP,
+    pairs_derivatives,
+    pairs_forces,
+    segments_contact,
+)
 from exubrush.parameters.case import BristleContactLaw
 
-# angles between two segments [rad] below which they count as parallel, above which as
-# crossing; blended in between (contact_parameters)
-PARALLEL = (0.02, 0.1)
-# depth over which the normal force grows from zero slope to the penalty's, as a share of
-# the two radii: filaments of a tuft touch all along at rest, and a kink in the force at
-# zero overlap there kept Newton from converging (docs/tufts.md)
-SOFT_DEPTH = 0.01
+
+def law_vector(law: BristleContactLaw) -> np.ndarray:
+    """The law's numbers as the kernels take them: stiffness [N/mm], damping [N·s/mm],
+    friction coefficient, friction velocity [mm/s]."""
+    return np.array([law.stiffness, law.damping, law.friction, law.friction_velocity], float)
 
 
 @dataclass(frozen=True)
@@ -96,31 +106,11 @@ def contact_parameters(a0, a1, b0, b1):
     weight : ndarray (...)
         Share of the crossing contact (1 − weight goes to the side-by-side pair).
     """
-    d1, d2, r = a1 - a0, b1 - b0, a0 - b0
-    a = np.einsum("...i,...i", d1, d1)
-    e = np.einsum("...i,...i", d2, d2)
-    f = np.einsum("...i,...i", d2, r)
-    c = np.einsum("...i,...i", d1, r)
-    b = np.einsum("...i,...i", d1, d2)
-    denom = a * e - b * b  # |d1|² |d2|² sin² of the angle between them
-    sine2 = np.clip(denom / (a * e), 0.0, 1.0)
-    crossing = np.clip((b * f - c * e) / np.where(denom > 0.0, denom, 1.0), 0.0, 1.0)
-    t = (b * crossing + f) / e
-    s_crossing = np.where(t < 0.0, np.clip(-c / a, 0.0, 1.0),
-                          np.where(t > 1.0, np.clip((b - c) / a, 0.0, 1.0), crossing))
-    t_crossing = np.clip(t, 0.0, 1.0)
-    # side by side: the ends of b's shadow on a, and the points of b across from them
-    shadow = np.stack([-c / a, (b - c) / a])
-    s_low = np.clip(shadow.min(axis=0), 0.0, 1.0)
-    s_high = np.clip(shadow.max(axis=0), 0.0, 1.0)
-    t_low = np.clip((b * s_low + f) / e, 0.0, 1.0)
-    t_high = np.clip((b * s_high + f) / e, 0.0, 1.0)
-    low, high = np.sin(PARALLEL[0]) ** 2, np.sin(PARALLEL[1]) ** 2
-    x = np.clip((sine2 - low) / (high - low), 0.0, 1.0)
-    weight = x * x * (3.0 - 2.0 * x)  # smoothstep: 0 side by side, 1 crossing
-    points = np.stack([np.stack([s_crossing, t_crossing]), np.stack([s_low, t_low]),
-                       np.stack([s_high, t_high])])
-    return points, weight
+    shape = np.broadcast_shapes(*(np.shape(p) for p in (a0, a1, b0, b1)))
+    ends = [np.ascontiguousarray(np.broadcast_to(p, shape), float).reshape(-1, 3)
+            for p in (a0, a1, b0, b1)]
+    found = segments_contact(*ends).T.reshape(7, *shape[:-1])
+    return found[:6].reshape(3, 2, *shape[:-1]), found[6]
 
 
 def candidate_pairs(chains: Chains, points: np.ndarray, margin: float = 0.0) -> np.ndarray:
@@ -193,73 +183,12 @@ def pair_corner_forces(x: np.ndarray, v: np.ndarray, radii: np.ndarray, inner: n
     overlap : ndarray (m,)
         Sum of the radii less the segments' distance [mm] (negative: a gap).
     """
-    points, crossing = contact_parameters(x[:, 0], x[:, 1], x[:, 2], x[:, 3])
-    reach = radii.sum(axis=1)
-    soft = SOFT_DEPTH * reach
-    gaps = [_between(x, s, t) for s, t in points]
-    delta, distance = gaps[0]
-    overlap = reach - distance
-    normal = delta / np.where(distance > 0.0, distance, 1.0)[:, None]
-    # the side-by-side ends' shares, from their own overlaps
-    depth_low, depth_high = (np.maximum(reach - d, 0.0) + 0.1 * soft for _, d in gaps[1:])
-    low_share = depth_low / (depth_low + depth_high)
-    # a side-by-side contact counts in proportion to the stretch the two segments share
-    # (the mean of its share of each): chains side by side then count each stretch once,
-    # however their joints fall, and a pair that shares a joint only counts nothing
-    (s_low, t_low), (s_high, t_high) = points[1], points[2]
-    side = (1.0 - crossing) * 0.5 * (np.abs(s_high - s_low) + np.abs(t_high - t_low))
-    shares = (crossing, side * low_share, side * (1.0 - low_share))
-    relative = sum(share[:, None] * _relative_velocity(v, s, t)
-                   for (s, t), share in zip(points, shares, strict=True))
-    force = _law_force(overlap, normal, relative, soft, law)
-    touching = (overlap > 0.0) & (distance > 0.0)
-    force = np.where(touching[:, None], force, 0.0)
-    forces = np.zeros(x.shape)
-    for index, ((s, t), share) in enumerate(zip(points, shares, strict=True)):
-        weight = share if index else share * (_joint_weight(s, inner[:, 0], inner[:, 1])
-                                              * _joint_weight(t, inner[:, 2], inner[:, 3]))
-        corner_shares = np.column_stack([-(1.0 - s), -s, 1.0 - t, t]) * weight[:, None]
-        forces += corner_shares[:, :, None] * force[:, None, :]
-    return forces, overlap
+    return pairs_forces(np.ascontiguousarray(x, float), np.ascontiguousarray(v, float),
+                        np.ascontiguousarray(radii, float), np.ascontiguousarray(inner, bool),
+                        law_vector(law))
 
 
-def _between(x, s, t):
-    """Vector and distance [mm] from the first segment's point s to the second's point t."""
-    a0, a1, b0, b1 = x[:, 0], x[:, 1], x[:, 2], x[:, 3]
-    delta = (b0 + t[:, None] * (b1 - b0)) - (a0 + s[:, None] * (a1 - a0))
-    return delta, np.linalg.norm(delta, axis=1)
-
-
-def _relative_velocity(v, s, t):
-    """Velocity of the second segment's point t relative to the first's point s [mm/s]."""
-    return ((1.0 - t)[:, None] * v[:, 2] + t[:, None] * v[:, 3]
-            - (1.0 - s)[:, None] * v[:, 0] - s[:, None] * v[:, 1])
-
-
-def _law_force(overlap, normal, relative, soft, law: BristleContactLaw):
-    """Force on the second segment [N] (module docstring), zero slope at first touch."""
-    approach = np.einsum("ij,ij->i", normal, relative)
-    depth = np.maximum(overlap, 0.0)
-    elastic = law.stiffness * np.where(depth < soft, 0.5 * depth**2 / soft, depth - 0.5 * soft)
-    damping = law.damping * np.minimum(depth / soft, 1.0) * approach
-    normal_force = np.maximum(elastic - damping, 0.0)
-    sliding = relative - approach[:, None] * normal
-    speed = np.linalg.norm(sliding, axis=1)
-    friction = -(law.friction * normal_force / np.maximum(speed, law.friction_velocity)
-                 )[:, None] * sliding
-    return normal_force[:, None] * normal + friction
-
-
-def _joint_weight(parameter, inner_start, inner_end):
-    """1/2 where the contact point is a joint shared with the chain's next segment (both
-    segments find it). A weight rising smoothly from 1/2 over a tenth of the segment was
-    tried: a 7-filament tuft then took 1,515 steps and 4,130 Jacobians for 1.55 s instead
-    of 910 and 1,209 (3.3x the wall time), so the step stays."""
-    at_joint = ((parameter == 0.0) & inner_start) | ((parameter == 1.0) & inner_end)
-    return np.where(at_joint, 0.5, 1.0)
-
-
-def _corners(chains: Chains, pairs: np.ndarray):
+def pair_corners(chains: Chains, pairs: np.ndarray):
     """Corner point indices (m, 4), radii (m, 2) and joint flags (m, 4) of segment pairs."""
     first, second = pairs[:, 0], pairs[:, 1]
     corners = np.column_stack([chains.starts[first], chains.ends[first],
@@ -274,7 +203,7 @@ def contact_forces(chains: Chains, points: np.ndarray, velocities: np.ndarray,
                    pairs: np.ndarray, law: BristleContactLaw) -> Contacts:
     """The touching pairs among the candidate segment ``pairs`` at the given point
     positions [mm] and velocities [mm/s], and their corner forces."""
-    corners, radii, inner = _corners(chains, pairs)
+    corners, radii, inner = pair_corners(chains, pairs)
     forces, overlap = pair_corner_forces(points[corners], velocities[corners], radii, inner,
                                          law)
     touching = overlap > 0.0
@@ -290,12 +219,11 @@ def point_forces(contacts: Contacts, count: int) -> np.ndarray:
 
 def point_force_derivatives(chains: Chains, points: np.ndarray, velocities: np.ndarray,
                             contacts: Contacts, law: BristleContactLaw,
-                            step: float = 1e-8, velocity_step: float = 1e-5):
+                            step: float = POSITION_STEP,
+                            velocity_step: float = VELOCITY_STEP):
     """Derivatives of the touching pairs' corner forces with respect to their corners'
     positions and velocities, by central differences of :func:`pair_corner_forces` (each
-    pair moved on its own, all pairs at once) with steps ``step`` [mm] and
-    ``velocity_step`` [mm/s] (the damping is small beside the elastic force: a velocity
-    step as small as the position step lost the damping's slope in rounding).
+    pair moved on its own) with steps ``step`` [mm] and ``velocity_step`` [mm/s].
 
     Returns
     -------
@@ -305,27 +233,9 @@ def point_force_derivatives(chains: Chains, points: np.ndarray, velocities: np.n
     by_position, by_velocity : ndarray
         ∂f/∂x [N/mm] and ∂f/∂v [N·s/mm] at (rows, columns).
     """
-    corners, radii, inner = _corners(chains, contacts.pairs)
-    x, v = points[corners], velocities[corners]
-    count = len(corners)
-    # every pair moved along each of its 24 coordinates (12 positions, 12 velocities), both
-    # ways, in one call: 48 copies of each pair
-    moves = np.zeros((48, 2, 4, 3))
-    for k in range(24):
-        kind, corner, axis = divmod(k, 12)[0], (k % 12) // 3, k % 3
-        size = (step, velocity_step)[kind]
-        moves[2 * k, kind, corner, axis] = size
-        moves[2 * k + 1, kind, corner, axis] = -size
-    moved_x = (x[None] + moves[:, 0, None]).reshape(-1, 4, 3)
-    moved_v = (v[None] + moves[:, 1, None]).reshape(-1, 4, 3)
-    forces, _ = pair_corner_forces(moved_x, moved_v, np.tile(radii, (48, 1)),
-                                   np.tile(inner, (48, 1)), law)
-    forces = forces.reshape(24, 2, count, 4, 3)
-    sizes = np.repeat([step, velocity_step], 12)[:, None, None, None]
-    slopes = (forces[:, 0] - forces[:, 1]) / (2.0 * sizes)  # (24, m, 4, 3)
-    # (m, 4, 3, 4, 3): force corner/axis by moved corner/axis
-    by_position = slopes[:12].reshape(4, 3, count, 4, 3).transpose(2, 3, 4, 0, 1)
-    by_velocity = slopes[12:].reshape(4, 3, count, 4, 3).transpose(2, 3, 4, 0, 1)
+    corners, radii, inner = pair_corners(chains, contacts.pairs)
+    by_position, by_velocity = pairs_derivatives(points[corners], velocities[corners], radii,
+                                                 inner, law_vector(law), step, velocity_step)
     coordinate = 3 * corners[:, :, None] + np.arange(3)  # (m, 4, 3)
     rows = np.broadcast_to(coordinate[:, :, :, None, None], by_position.shape)
     columns = np.broadcast_to(coordinate[:, None, None, :, :], by_position.shape)

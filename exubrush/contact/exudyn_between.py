@@ -26,13 +26,17 @@ from exubrush.contact.between import (
     Chains,
     candidate_pairs,
     contact_forces,
-    point_force_derivatives,
-    point_forces,
+    law_vector,
+    pair_corners,
+)
+from exubrush.contact.between_kernel import (
+    DIVERGED,
+    POSITION_STEP,
+    VELOCITY_STEP,
+    group_forces,
+    group_jacobian,
 )
 from exubrush.parameters.case import BristleContactLaw
-
-# positions beyond this [mm] are a diverged Newton iterate (a head is centimetres wide)
-DIVERGED = 1e6
 
 
 @dataclass
@@ -57,52 +61,47 @@ class BristleContact:
     object_number: int = -1
     counts: list = field(default_factory=list)
     overlaps: list = field(default_factory=list)
-    # segment pairs that may touch during the coming step (refresh); None: search every call
-    candidates: np.ndarray | None = None
+    # corner points (m, 4), radii (m, 2) and joint flags (m, 4) of the segment pairs that
+    # may touch during the coming step (refresh); None: search at every call
+    candidate_corners: tuple | None = None
+
+    def __post_init__(self):
+        self.law_numbers = law_vector(self.law)
 
     def points(self, q: np.ndarray) -> np.ndarray:
         """Point positions [mm] (or velocities [mm/s], with base 0) from the object's q."""
         return self.base + q[self.coordinates]
 
-    def _contacts(self, q, q_t, search: bool = False):
+    def _candidate_corners(self, q) -> tuple:
+        if self.candidate_corners is not None:
+            return self.candidate_corners
         points = self.points(q)
-        velocities = q_t[self.coordinates]
-        if not (np.all(np.abs(points) < DIVERGED) and np.all(np.isfinite(velocities))):
-            pairs = np.zeros((0, 2), int)  # a diverged Newton iterate, rejected anyway
-        elif search or self.candidates is None:
-            pairs = candidate_pairs(self.chains, points)
-        else:
-            pairs = self.candidates
-        return points, velocities, contact_forces(self.chains, points, velocities, pairs,
-                                                  self.law)
+        if not np.all(np.abs(points) < DIVERGED):
+            return pair_corners(self.chains, np.zeros((0, 2), int))
+        return pair_corners(self.chains, candidate_pairs(self.chains, points))
 
     def force(self, mbs, t, item, q, q_t):
         """Exudyn force user function: the contact forces on the object's coordinates."""
         out = np.zeros(self.size)
-        if self.candidates is not None and not len(self.candidates):
-            return out
-        _, _, contacts = self._contacts(np.asarray(q), np.asarray(q_t))
-        np.add.at(out, self.coordinates.ravel(),
-                  point_forces(contacts, len(self.base)).ravel())
+        q = np.asarray(q)
+        corners, radii, inner = self._candidate_corners(q)
+        if len(corners):
+            group_forces(q, np.asarray(q_t), self.base, self.coordinates, corners, radii,
+                         inner, self.law_numbers, out)
         return out
 
     def jacobian(self, mbs, t, item, q, q_t, f_position, f_velocity):
         """Exudyn Jacobian user function: −(∂f/∂q · f_position + ∂f/∂q_t · f_velocity) of
         the touching pairs, as sparse triplets in the object's coordinates."""
         matrix = exu.MatrixContainer()
-        if self.candidates is not None and not len(self.candidates):
-            matrix.SetWithSparseMatrix(np.zeros((0, 3)), self.size, self.size)
-            return matrix
-        points, velocities, contacts = self._contacts(np.asarray(q), np.asarray(q_t))
-        if not len(contacts.pairs):
-            matrix.SetWithSparseMatrix(np.zeros((0, 3)), self.size, self.size)
-            return matrix
-        rows, columns, by_position, by_velocity = point_force_derivatives(
-            self.chains, points, velocities, contacts, self.law)
-        flat = self.coordinates.ravel()
-        values = -(by_position * f_position + by_velocity * f_velocity)
-        matrix.SetWithSparseMatrix(np.column_stack([flat[rows], flat[columns], values]),
-                                   self.size, self.size)
+        q = np.asarray(q)
+        corners, radii, inner = self._candidate_corners(q)
+        triplets = np.zeros((0, 3))
+        if len(corners):
+            triplets = group_jacobian(q, np.asarray(q_t), self.base, self.coordinates,
+                                      corners, radii, inner, self.law_numbers, f_position,
+                                      f_velocity, POSITION_STEP, VELOCITY_STEP)
+        matrix.SetWithSparseMatrix(triplets, self.size, self.size)
         return matrix
 
     def _state(self, mbs):
@@ -117,14 +116,18 @@ class BristleContact:
         q, q_t = self._state(mbs)
         points = self.points(q)
         if not np.all(np.abs(points) < DIVERGED):
-            self.candidates = None
+            self.candidate_corners = None
             return
-        self.candidates = candidate_pairs(self.chains, points, margin=reach)
+        self.candidate_corners = pair_corners(self.chains,
+                                              candidate_pairs(self.chains, points, margin=reach))
 
     def sample(self, mbs) -> None:
         """Record the contacts of the system's current (converged) state."""
         q, q_t = self._state(mbs)
-        _, _, contacts = self._contacts(q, q_t, search=True)
+        points = self.points(q)
+        pairs = (candidate_pairs(self.chains, points) if np.all(np.abs(points) < DIVERGED)
+                 else np.zeros((0, 2), int))
+        contacts = contact_forces(self.chains, points, q_t[self.coordinates], pairs, self.law)
         self.counts.append(len(contacts.pairs))
         self.overlaps.append(float(contacts.overlap.max()) if len(contacts.pairs) else 0.0)
 

@@ -1,0 +1,322 @@
+"""Compiled kernels of the contact between bristles (numba; mm-N-s).
+
+One pair of segments at a time, in scalar code: the geometry and the law of
+exubrush.contact.between (whose module docstring states them) for each pair, then loops
+over pairs that gather the corner points from a group's coordinates and scatter the forces
+and their derivatives back. Exudyn calls the group's force function at every Newton
+iteration and its Jacobian function at every Jacobian update, a few dozen touching pairs
+each time: array code paid numpy's per-call overhead dozens of times per pair (0.5 ms a
+force call, 2-3 ms a Jacobian call on a 7-filament tuft), scalar compiled code pays it
+once per call (validation/benchmarks/README.md, "Tufts and contact between bristles").
+
+``error_model="numpy"``: a division by zero gives inf or nan as numpy's would (a segment of
+zero length, never built), not an exception inside Exudyn's call.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+# angles between two segments [rad] below which they count as parallel, above which as
+# crossing; blended in between (segment_contact)
+PARALLEL = (0.02, 0.1)
+_SINE2_LOW = math.sin(PARALLEL[0]) ** 2
+_SINE2_HIGH = math.sin(PARALLEL[1]) ** 2
+# depth over which the normal force grows from zero slope to the penalty's, as a share of
+# the two radii: filaments of a tuft touch all along at rest, and a kink in the force at
+# zero overlap there kept Newton from converging (docs/tufts.md)
+SOFT_DEPTH = 0.01
+# positions beyond this [mm] are a diverged Newton iterate (a head is centimetres wide)
+DIVERGED = 1e6
+# central-difference steps of the contact's derivatives: position [mm] and velocity [mm/s]
+# (the damping is small beside the elastic force: a velocity step as small as the position
+# step lost the damping's slope in rounding)
+POSITION_STEP = 1e-8
+VELOCITY_STEP = 1e-5
+
+_JIT = {"cache": True, "error_model": "numpy", "nogil": True}
+
+
+@njit(inline="always")
+def _clip01(value):
+    # np.clip's answer for nan too (nan stays nan)
+    if value < 0.0:
+        return 0.0
+    if value > 1.0:
+        return 1.0
+    return value
+
+
+@njit(**_JIT)
+def segment_contact(x):
+    """Contact parameters of the segments x[0]-x[1] and x[2]-x[3] (x: (4, 3) [mm]).
+
+    Returns (s, t) of the crossing contact (the closest points, Ericson 2005, §5.1.9),
+    (s, t) of both ends of the stretch the segments share side by side, and the crossing
+    contact's weight (a smoothstep in sin² of their angle between PARALLEL[0] and [1]).
+    """
+    d1x, d1y, d1z = x[1, 0] - x[0, 0], x[1, 1] - x[0, 1], x[1, 2] - x[0, 2]
+    d2x, d2y, d2z = x[3, 0] - x[2, 0], x[3, 1] - x[2, 1], x[3, 2] - x[2, 2]
+    rx, ry, rz = x[0, 0] - x[2, 0], x[0, 1] - x[2, 1], x[0, 2] - x[2, 2]
+    a = d1x * d1x + d1y * d1y + d1z * d1z
+    e = d2x * d2x + d2y * d2y + d2z * d2z
+    f = d2x * rx + d2y * ry + d2z * rz
+    c = d1x * rx + d1y * ry + d1z * rz
+    b = d1x * d2x + d1y * d2y + d1z * d2z
+    denom = a * e - b * b  # |d1|² |d2|² sin² of the angle between them
+    sine2 = _clip01(denom / (a * e))
+    crossing = _clip01((b * f - c * e) / (denom if denom > 0.0 else 1.0))
+    t = (b * crossing + f) / e
+    if t < 0.0:
+        s_crossing = _clip01(-c / a)
+    elif t > 1.0:
+        s_crossing = _clip01((b - c) / a)
+    else:
+        s_crossing = crossing
+    t_crossing = _clip01(t)
+    # side by side: the ends of b's shadow on a, and the points of b across from them
+    first, second = -c / a, (b - c) / a
+    s_low = _clip01(min(first, second))
+    s_high = _clip01(max(first, second))
+    t_low = _clip01((b * s_low + f) / e)
+    t_high = _clip01((b * s_high + f) / e)
+    blend = _clip01((sine2 - _SINE2_LOW) / (_SINE2_HIGH - _SINE2_LOW))
+    weight = blend * blend * (3.0 - 2.0 * blend)  # 0 side by side, 1 crossing
+    return s_crossing, t_crossing, s_low, t_low, s_high, t_high, weight
+
+
+@njit(inline="always")
+def _between(x, s, t):
+    """Vector and distance [mm] from the first segment's point s to the second's point t."""
+    dx = (x[2, 0] + t * (x[3, 0] - x[2, 0])) - (x[0, 0] + s * (x[1, 0] - x[0, 0]))
+    dy = (x[2, 1] + t * (x[3, 1] - x[2, 1])) - (x[0, 1] + s * (x[1, 1] - x[0, 1]))
+    dz = (x[2, 2] + t * (x[3, 2] - x[2, 2])) - (x[0, 2] + s * (x[1, 2] - x[0, 2]))
+    return dx, dy, dz, math.sqrt(dx * dx + dy * dy + dz * dz)
+
+
+@njit(inline="always")
+def _relative_velocity(v, s, t, axis):
+    """Velocity of the second segment's point t relative to the first's point s [mm/s]."""
+    return ((1.0 - t) * v[2, axis] + t * v[3, axis]
+            - (1.0 - s) * v[0, axis] - s * v[1, axis])
+
+
+@njit(inline="always")
+def _blended_velocity(v, s0, t0, s1, t1, s2, t2, share0, share1, share2, axis):
+    """The contact's relative velocity [mm/s]: the three contact points' (crossing and
+    both side-by-side ends), weighted by their shares."""
+    return (share0 * _relative_velocity(v, s0, t0, axis)
+            + share1 * _relative_velocity(v, s1, t1, axis)
+            + share2 * _relative_velocity(v, s2, t2, axis))
+
+
+@njit(inline="always")
+def _joint_weight(parameter, inner_start, inner_end):
+    """1/2 where the contact point is a joint shared with the chain's next segment (both
+    segments find it). A weight rising smoothly from 1/2 over a tenth of the segment was
+    tried: a 7-filament tuft then took 1,515 steps and 4,130 Jacobians for 1.55 s instead
+    of 910 and 1,209 (3.3x the wall time), so the step stays."""
+    if (parameter == 0.0 and inner_start) or (parameter == 1.0 and inner_end):
+        return 0.5
+    return 1.0
+
+
+@njit(**_JIT)
+def pair_force(x, v, radius_a, radius_b, inner, law, out):
+    """Forces [N] on the four corners of one segment pair into ``out`` (4, 3); returns the
+    overlap [mm] (negative: a gap). exubrush.contact.between.pair_corner_forces says
+    where the force acts; ``law`` = (stiffness, damping, friction, friction velocity)."""
+    stiffness, damping, friction, friction_velocity = law[0], law[1], law[2], law[3]
+    s0, t0, s1, t1, s2, t2, crossing = segment_contact(x)
+    reach = radius_a + radius_b
+    soft = SOFT_DEPTH * reach
+    nx, ny, nz, distance = _between(x, s0, t0)
+    overlap = reach - distance
+    for corner in range(4):
+        for axis in range(3):
+            out[corner, axis] = 0.0
+    if not (overlap > 0.0 and distance > 0.0):
+        return overlap
+    nx, ny, nz = nx / distance, ny / distance, nz / distance
+    # the side-by-side ends' shares, from their own overlaps
+    depth_low = max(reach - _between(x, s1, t1)[3], 0.0) + 0.1 * soft
+    depth_high = max(reach - _between(x, s2, t2)[3], 0.0) + 0.1 * soft
+    low_share = depth_low / (depth_low + depth_high)
+    # a side-by-side contact counts in proportion to the stretch the two segments share
+    side = (1.0 - crossing) * 0.5 * (abs(s2 - s1) + abs(t2 - t1))
+    share1, share2 = side * low_share, side * (1.0 - low_share)
+    rx = _blended_velocity(v, s0, t0, s1, t1, s2, t2, crossing, share1, share2, 0)
+    ry = _blended_velocity(v, s0, t0, s1, t1, s2, t2, crossing, share1, share2, 1)
+    rz = _blended_velocity(v, s0, t0, s1, t1, s2, t2, crossing, share1, share2, 2)
+    # the law: a penalty with zero slope at first touch, damping, regularised friction
+    approach = nx * rx + ny * ry + nz * rz
+    if overlap < soft:
+        elastic = stiffness * 0.5 * overlap * overlap / soft
+    else:
+        elastic = stiffness * (overlap - 0.5 * soft)
+    normal_force = max(elastic - damping * min(overlap / soft, 1.0) * approach, 0.0)
+    sx, sy, sz = rx - approach * nx, ry - approach * ny, rz - approach * nz
+    speed = math.sqrt(sx * sx + sy * sy + sz * sz)
+    slip = friction * normal_force / max(speed, friction_velocity)
+    fx = normal_force * nx - slip * sx
+    fy = normal_force * ny - slip * sy
+    fz = normal_force * nz - slip * sz
+    # handed to the corners in proportion to where each contact point lies
+    weights = (crossing * _joint_weight(s0, inner[0], inner[1])
+               * _joint_weight(t0, inner[2], inner[3]), share1, share2)
+    params = ((s0, t0), (s1, t1), (s2, t2))
+    for index in range(3):
+        w = weights[index]
+        s, t = params[index]
+        shares = (-(1.0 - s) * w, -s * w, (1.0 - t) * w, t * w)
+        for corner in range(4):
+            out[corner, 0] += shares[corner] * fx
+            out[corner, 1] += shares[corner] * fy
+            out[corner, 2] += shares[corner] * fz
+    return overlap
+
+
+@njit(**_JIT)
+def pairs_forces(x, v, radii, inner, law):
+    """pair_force for every pair: x, v (m, 4, 3), radii (m, 2), inner (m, 4); returns the
+    forces (m, 4, 3) [N] and overlaps (m,) [mm]."""
+    count = x.shape[0]
+    forces = np.zeros((count, 4, 3))
+    overlap = np.empty(count)
+    for k in range(count):
+        overlap[k] = pair_force(x[k], v[k], radii[k, 0], radii[k, 1], inner[k], law,
+                                forces[k])
+    return forces, overlap
+
+
+@njit(**_JIT)
+def pairs_derivatives(x, v, radii, inner, law, step, velocity_step):
+    """Central differences of pair_force with respect to each pair's 12 corner positions
+    (step [mm]) and 12 velocities (velocity_step [mm/s]); returns ∂f/∂x [N/mm] and ∂f/∂v
+    [N·s/mm], each (m, 4, 3, 4, 3): force corner and axis by moved corner and axis."""
+    count = x.shape[0]
+    by_position = np.empty((count, 4, 3, 4, 3))
+    by_velocity = np.empty((count, 4, 3, 4, 3))
+    plus, minus = np.empty((4, 3)), np.empty((4, 3))
+    for k in range(count):
+        xk, vk = x[k].copy(), v[k].copy()
+        for kind in range(2):
+            moved = xk if kind == 0 else vk
+            size = step if kind == 0 else velocity_step
+            target = by_position if kind == 0 else by_velocity
+            for corner in range(4):
+                for axis in range(3):
+                    held = moved[corner, axis]
+                    moved[corner, axis] = held + size
+                    pair_force(xk, vk, radii[k, 0], radii[k, 1], inner[k], law, plus)
+                    moved[corner, axis] = held - size
+                    pair_force(xk, vk, radii[k, 0], radii[k, 1], inner[k], law, minus)
+                    moved[corner, axis] = held
+                    for row in range(4):
+                        for column in range(3):
+                            target[k, row, column, corner, axis] = (
+                                (plus[row, column] - minus[row, column]) / (2.0 * size))
+    return by_position, by_velocity
+
+
+@njit(**_JIT)
+def segments_contact(a0, a1, b0, b1):
+    """segment_contact for segments given as (n, 3) end arrays; returns (n, 7)."""
+    count = a0.shape[0]
+    result = np.empty((count, 7))
+    x = np.empty((4, 3))
+    for k in range(count):
+        x[0] = a0[k]
+        x[1] = a1[k]
+        x[2] = b0[k]
+        x[3] = b1[k]
+        parameters = segment_contact(x)
+        for column in range(7):
+            result[k, column] = parameters[column]
+    return result
+
+
+@njit(**_JIT)
+def _gather(q, base, coordinates, corners, k, x):
+    for corner in range(4):
+        point = corners[k, corner]
+        for axis in range(3):
+            x[corner, axis] = base[point, axis] + q[coordinates[point, axis]]
+
+
+@njit(**_JIT)
+def _sane(q, q_t, base, coordinates):
+    """Whether the state is one to evaluate (not a diverged Newton iterate)."""
+    for point in range(coordinates.shape[0]):
+        for axis in range(3):
+            index = coordinates[point, axis]
+            if not (abs(base[point, axis] + q[index]) < DIVERGED and math.isfinite(q_t[index])):
+                return False
+    return True
+
+
+@njit(**_JIT)
+def group_forces(q, q_t, base, coordinates, corners, radii, inner, law, out):
+    """Add the contact forces of the candidate pairs to ``out`` (the group object's
+    generalised forces [N]); q, q_t its coordinates [mm] and velocities [mm/s], base the
+    points at q = 0, coordinates (points, 3) each point's entries in q, corners (m, 4) the
+    candidate pairs' corner points. Returns the number of touching pairs (-1: a diverged
+    state, no forces)."""
+    if not _sane(q, q_t, base, coordinates):
+        return -1
+    x, v, forces = np.empty((4, 3)), np.empty((4, 3)), np.empty((4, 3))
+    zero = np.zeros(base.shape)
+    touching = 0
+    for k in range(corners.shape[0]):
+        _gather(q, base, coordinates, corners, k, x)
+        _gather(q_t, zero, coordinates, corners, k, v)
+        if pair_force(x, v, radii[k, 0], radii[k, 1], inner[k], law, forces) > 0.0:
+            touching += 1
+            for corner in range(4):
+                for axis in range(3):
+                    out[coordinates[corners[k, corner], axis]] += forces[corner, axis]
+    return touching
+
+
+@njit(**_JIT)
+def group_jacobian(q, q_t, base, coordinates, corners, radii, inner, law, f_position,
+                   f_velocity, step, velocity_step):
+    """Sparse triplets (row, column, value) of −(∂f/∂q · f_position + ∂f/∂q_t ·
+    f_velocity) of the touching candidate pairs (group_forces' arguments), in the group
+    object's coordinates: 144 entries a touching pair, repeated entries add up."""
+    if not _sane(q, q_t, base, coordinates):
+        return np.zeros((0, 3))
+    count = corners.shape[0]
+    x, v, forces = np.empty((count, 4, 3)), np.empty((count, 4, 3)), np.empty((4, 3))
+    zero = np.zeros(base.shape)
+    touching = np.zeros(count, np.bool_)
+    for k in range(count):
+        _gather(q, base, coordinates, corners, k, x[k])
+        _gather(q_t, zero, coordinates, corners, k, v[k])
+        touching[k] = pair_force(x[k], v[k], radii[k, 0], radii[k, 1], inner[k], law,
+                                 forces) > 0.0
+    chosen = np.nonzero(touching)[0]
+    by_position, by_velocity = pairs_derivatives(x[chosen], v[chosen], radii[chosen],
+                                                 inner[chosen], law, step, velocity_step)
+    triplets = np.empty((144 * len(chosen), 3))
+    entry = 0
+    for n in range(len(chosen)):
+        k = chosen[n]
+        for row_corner in range(4):
+            for row_axis in range(3):
+                row = coordinates[corners[k, row_corner], row_axis]
+                for column_corner in range(4):
+                    for column_axis in range(3):
+                        triplets[entry, 0] = row
+                        triplets[entry, 1] = coordinates[corners[k, column_corner],
+                                                         column_axis]
+                        triplets[entry, 2] = -(
+                            by_position[n, row_corner, row_axis, column_corner, column_axis]
+                            * f_position
+                            + by_velocity[n, row_corner, row_axis, column_corner, column_axis]
+                            * f_velocity)
+                        entry += 1
+    return triplets
