@@ -35,7 +35,13 @@ def dynamic_settings(solver: Solver, end_time: float, output_interval: float,
     fresh Jacobian (on five DFM bristles: 17 % less wall time, 24 % fewer Jacobians).
     ``touching``: the system holds bristles that touch each other (exubrush.contact.
     exudyn_between): a sparse solver, and the sparsity pattern is analysed anew at every
-    factorisation, as contacts come and go.
+    factorisation, as contacts come and go; a fresh Jacobian at the start of every step
+    (with the last step's, the contacts had moved enough that Newton stalled until a new one
+    was made, 5 iterations a step instead of 2) and ``solver.touching_relative_tolerance``
+    (touching filaments leave a residual floor near 1e-5 of a step's initial residual that
+    Newton could not pass at any step size). On a 7-filament tuft, approach and 0.1 period,
+    the two together: 37-39 s -> 7.6 s (seed 1), 28-74 s -> 19 s (seed 2); each alone
+    gained little or nothing (validation/benchmarks/README.md).
     """
     settings = quiet(exu.SimulationSettings())
     ti = settings.timeIntegration
@@ -48,7 +54,9 @@ def dynamic_settings(solver: Solver, end_time: float, output_interval: float,
     ti.generalizedAlpha.spectralRadius = solver.spectral_radius
     ti.generalizedAlpha.computeInitialAccelerations = True
     ti.newton.useModifiedNewton = solver.modified_newton
-    ti.newton.relativeTolerance = solver.relative_tolerance
+    ti.newton.modifiedNewtonJacUpdatePerStep = touching
+    ti.newton.relativeTolerance = (solver.touching_relative_tolerance if touching
+                                   else solver.relative_tolerance)
     ti.newton.absoluteTolerance = solver.absolute_tolerance
     ti.newton.adaptInitialResidual = False
     ti.newton.maxIterations = solver.newton_iterations

@@ -11,7 +11,7 @@ segment's contact point to the second's, a penalty with damping that never pulls
 f_n = max(k·g(overlap) − c·h(overlap)·(n·v_rel), 0), where g grows as overlap²/(2δ) up to
 the depth δ = SOFT_DEPTH·(r_a + r_b) and as overlap − δ/2 beyond it (so the force starts
 with zero slope) and h = min(overlap/δ, 1); and Coulomb friction against the tangential relative
-velocity v_t, regularised below the speed v_r: f_t = −μ f_n v_t / max(|v_t|, v_r). The
+velocity v_t, regularised below the speed v_r: f_t = −μ f_n v_t / √(|v_t|² + v_r²). The
 force acts at the two closest points with opposite signs and is handed to each segment's
 end points in proportion to the closest point's position on it ((1 − s), s), which keeps
 its resultant and its moment about any point. A crossing contact at a joint of a chain is

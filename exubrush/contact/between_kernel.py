@@ -160,7 +160,10 @@ def pair_force(x, v, radius_a, radius_b, inner, law, out):
     normal_force = max(elastic - damping * min(overlap / soft, 1.0) * approach, 0.0)
     sx, sy, sz = rx - approach * nx, ry - approach * ny, rz - approach * nz
     speed = math.sqrt(sx * sx + sy * sy + sz * sz)
-    slip = friction * normal_force / max(speed, friction_velocity)
+    # smooth regularisation: with max(speed, v_r) instead, the kink at v_r cost a 7-filament
+    # tuft 14 % more steps and 19 % more Jacobians (approach and 0.1 period)
+    slip = friction * normal_force / math.sqrt(speed * speed
+                                               + friction_velocity * friction_velocity)
     fx = normal_force * nx - slip * sx
     fy = normal_force * ny - slip * sy
     fz = normal_force * nz - slip * sz

@@ -256,7 +256,8 @@ class BristleContactLaw(Parameters):
     friction: float = param(0.2, "Coulomb friction coefficient between bristles (nylon on "
                                  "nylon)", minimum=0.0)
     friction_velocity: float = param(
-        1.0, "sliding speed below which friction grows linearly from zero", "mm/s",
+        1.0, "sliding speed of the friction's regularisation: mu f_n v/sqrt(v^2 + v_r^2), "
+             "linear from zero below it", "mm/s",
         above=0.0)
 
 
@@ -449,6 +450,10 @@ class Solver(Parameters):
         0.0, "generalized-alpha spectral radius at infinity (0 = most damping)", minimum=0.0
     )
     relative_tolerance: float = param(1e-6, "Newton relative tolerance", above=0.0)
+    touching_relative_tolerance: float = param(
+        1e-5, "Newton relative tolerance of a group of bristles that touch each other "
+              "(contact.between_bristles)", above=0.0,
+    )
     absolute_tolerance: float = param(1e-10, "Newton absolute tolerance (residual)", above=0.0)
     modified_newton: bool = param(True, "reuse the Jacobian between Newton iterations and "
                                         "steps (false: a fresh Jacobian every iteration)")

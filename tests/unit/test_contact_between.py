@@ -107,14 +107,18 @@ def test_the_normal_force_follows_the_penalty_beyond_the_soft_depth():
     np.testing.assert_allclose(f[0, :, 2], np.array([-1, -1, 1, 1]) * f[0, 3, 2], rtol=1e-12)
 
 
-def test_friction_opposes_sliding_and_saturates_at_mu_times_the_normal_force():
+@pytest.mark.parametrize("speed", [0.3, 5.0, 500.0])
+def test_friction_opposes_sliding_and_approaches_mu_times_the_normal_force(speed):
     x = np.array([[[-1, 0, 0], [1, 0, 0], [0, -1, 2 * R - 0.01], [0, 1, 2 * R - 0.01]]],
                  float)
     v = np.zeros_like(x)
-    v[0, 2:, 0] = 5.0  # b slides along +x at 5 mm/s, above the regularising speed
+    v[0, 2:, 0] = speed  # b slides along +x [mm/s]
     f, _ = pair_corner_forces(x, v, np.array([[R, R]]), np.zeros((1, 4), bool), LAW)
     on_b = f[0, 2:].sum(axis=0)
-    assert on_b[0] == pytest.approx(-LAW.friction * on_b[2], rel=1e-12)
+    regularised = speed / np.hypot(speed, LAW.friction_velocity)
+    assert on_b[0] == pytest.approx(-LAW.friction * regularised * on_b[2], rel=1e-12)
+    if speed > 100 * LAW.friction_velocity:  # Coulomb's μ f_n well above v_r
+        assert on_b[0] == pytest.approx(-LAW.friction * on_b[2], rel=1e-4)
 
 
 def test_a_contact_at_a_joint_counts_once():
