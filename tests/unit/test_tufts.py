@@ -172,7 +172,7 @@ def test_a_run_with_contact_between_bristles_is_warned_of_its_cost():
     assert prepared.warnings == (
         "contact.between_bristles: 1 system(s), the largest of 37 bristles that can touch, "
         "each solved on one core; contact between bristles is slow (7 touching filaments "
-        "took 147 s per slide period, 5 s without)",)
+        "took 136 s per slide period, 5 s without)",)
 
 
 def test_without_contact_between_bristles_each_bristle_is_its_own_group():
