@@ -166,3 +166,45 @@ def test_a_contact_is_located_halfway_between_the_closest_points():
                                atol=1e-12)
     apart = points + np.array([0.0, 0.0, 1.0]) * np.array([[0], [0], [1], [1]])
     assert contact_locations(chains, apart, LAW).shape == (0, 3)
+
+
+def test_a_groups_compiled_jacobian_is_the_slope_of_its_compiled_forces():
+    from exubrush.contact.between import law_vector, pair_corners
+    from exubrush.contact.between_kernel import group_forces, group_jacobian
+
+    # three side-by-side chains of 4 points pressed together, points scattered by 5 µm; q
+    # holds each point's displacement (3 coordinates) after 2 unused entries
+    rng = np.random.default_rng(7)
+    chains = Chains.from_polylines([[0, 1, 2, 3], [4, 5, 6, 7], [8, 9, 10, 11]], [R, R, R])
+    base = np.array([[x, 0.0, z] for x in (0.0, 0.198, 0.396) for z in (0, 1, 2, 3)], float)
+    coordinates = 2 + np.arange(36).reshape(12, 3)
+    q = np.zeros(38)
+    q[2:] = rng.uniform(-0.005, 0.005, 36)
+    q_t = rng.uniform(-2.0, 2.0, 38)
+    corners, radii, inner = pair_corners(chains, candidate_pairs(chains, base + q[coordinates],
+                                                                 margin=0.05))
+    law = law_vector(LAW)
+
+    def forces(q, q_t):
+        out = np.zeros(38)
+        group_forces(q, q_t, base, coordinates, corners, radii, inner, law, out)
+        return out
+
+    assert np.abs(forces(q, q_t)).max() > 0.01  # they press: a test of something
+    for f_position, f_velocity, step in ((1.0, 0.0, 1e-7), (0.0, 1.0, 1e-4)):
+        triplets = group_jacobian(q, q_t, base, coordinates, corners, radii, inner, law,
+                                  f_position, f_velocity, 1e-8, 1e-5)
+        jacobian = np.zeros((38, 38))
+        np.add.at(jacobian, (triplets[:, 0].astype(int), triplets[:, 1].astype(int)),
+                  triplets[:, 2])
+        slope = np.zeros((38, 38))
+        for column in range(38):
+            move = np.zeros(38)
+            move[column] = step
+            if f_position:
+                slope[:, column] = -(forces(q + move, q_t) - forces(q - move, q_t)) / (2 * step)
+            else:
+                slope[:, column] = -(forces(q, q_t + move) - forces(q, q_t - move)) / (2 * step)
+        # both are central differences, of different steps: they agree to the truncation
+        # error of the larger step (the law's curvature times step², far below 1e-6)
+        np.testing.assert_allclose(jacobian, slope, atol=1e-6 * np.abs(slope).max())

@@ -3,7 +3,7 @@
 import exudyn as exu
 
 from exubrush.parameters.case import Solver
-from exubrush.solver import dynamic_settings
+from exubrush.solver import dynamic_settings, fresh_jacobian_after_step_change
 
 
 def test_threads_and_linear_solver_reach_exudyn():
@@ -19,3 +19,40 @@ def test_defaults_solve_one_bristle_dense_on_one_thread():
     assert settings.parallel.numberOfThreads == 1
     assert settings.linearSolver.solverType == exu.LinearSolverType.EigenDense
     assert settings.timeIntegration.newton.maxIterations == 12
+
+
+def test_a_touching_group_gets_a_jacobian_every_step_and_its_own_tolerance():
+    solver = Solver(relative_tolerance=1e-7, touching_relative_tolerance=3e-5)
+    touching = dynamic_settings(solver, end_time=1.0, output_interval=0.01, touching=True)
+    apart = dynamic_settings(solver, end_time=1.0, output_interval=0.01)
+    assert touching.timeIntegration.newton.modifiedNewtonJacUpdatePerStep
+    assert touching.timeIntegration.newton.relativeTolerance == 3e-5
+    assert touching.linearSolver.solverType == exu.LinearSolverType.EigenSparse
+    assert not apart.timeIntegration.newton.modifiedNewtonJacUpdatePerStep
+    assert apart.timeIntegration.newton.relativeTolerance == 1e-7
+
+
+class _System:
+    """What fresh_jacobian_after_step_change reads and sets of a MainSystem."""
+
+    def __init__(self):
+        self.start = 0.0
+        self.solverSignalJacobianUpdate = False
+        self.systemData = self
+
+    def GetTime(self, configuration):  # noqa: N802 (Exudyn's name)
+        assert configuration == exu.ConfigurationType.StartOfStep
+        return self.start
+
+
+def test_a_new_jacobian_is_asked_for_exactly_when_the_step_size_changes():
+    hook, system = fresh_jacobian_after_step_change(), _System()
+    asked = []
+    # (start of the step, end of the step): equal steps, a retry at half the size from the
+    # same start, steps of that size (rounding in t - start), a larger one again
+    for start, end in [(0.0, 2e-3), (2e-3, 4e-3), (4e-3, 6e-3), (4e-3, 5e-3),
+                       (5e-3, 6e-3), (0.1 + 6e-3, 0.1 + 7e-3), (7e-3, 9e-3)]:
+        system.start, system.solverSignalJacobianUpdate = start, False
+        hook(system, end)
+        asked.append(system.solverSignalJacobianUpdate)
+    assert asked == [False, False, False, True, False, False, True]
