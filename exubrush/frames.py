@@ -183,7 +183,7 @@ def _fill(fig, axes, runs, samples, limits) -> None:
             axis.clear()
             _draw_view(axis, run, sample, horizontal, limits)
             axis.set_xlabel(f"{'xyz'[horizontal]} from the head centre [mm] ({view})")
-            axis.set_ylabel("height above the surface [mm]")
+            axis.set_ylabel("z above surface [mm]")  # longer ran into the row above
         axes[0][column].set_title(f"{run.label}\nt = {run.time[sample]:.2f} s", fontsize=9)
     fig.suptitle("exubrush bristle shapes (simulation)", fontsize=10)
 
