@@ -18,7 +18,6 @@ import numpy as np
 from matplotlib.collections import PatchCollection, PolyCollection
 from matplotlib.patches import Circle
 
-from exubrush.contact.between import Chains, contact_locations
 from exubrush.files import atomic_file
 from exubrush.mesh import MeshError, MeshSurface
 from exubrush.parameters.case import BristleContactLaw, Surface
@@ -130,6 +129,9 @@ def tube_outline(points: np.ndarray, radius: float) -> np.ndarray:
 
 def _touching(lines: np.ndarray, radii: np.ndarray, law: BristleContactLaw) -> np.ndarray:
     """Where the bristles of one shape sample (bristles, points, 3) touch [mm]."""
+    # imported here: it loads numba, which runs without contact between bristles do not need
+    from exubrush.contact.between import Chains, contact_locations
+
     count, points = lines.shape[:2]
     chains = Chains.from_polylines(
         [list(range(b * points, (b + 1) * points)) for b in range(count)], list(radii))

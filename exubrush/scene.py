@@ -9,6 +9,7 @@ drive reactions and the bristle nodes.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import exudyn as exu
 import exudyn.graphics as graphics
@@ -16,12 +17,6 @@ import exudyn.itemInterface as eii
 import numpy as np
 from exudyn.rigidBodyUtilities import InertiaCuboid
 
-from exubrush.contact.exudyn_between import (
-    BristleContact,
-    add_bristle_contact,
-    contact_refresh,
-    locate_in_system,
-)
 from exubrush.contact.exudyn_contact import (
     add_builtin_tip_contact,
     add_tip_contact,
@@ -40,6 +35,9 @@ from exubrush.motion import HeadMotion
 from exubrush.prepared import PreparedCase
 from exubrush.solver import fresh_jacobian_after_step_change, linear_solver
 from exubrush.surfaces import orientation, tooth_pitch
+
+if TYPE_CHECKING:
+    from exubrush.contact.exudyn_between import BristleContact
 
 # the handle is a stiff block whose mass only enters the drive reaction, from which the
 # exact inertia force m·a of the prescribed motion is removed again
@@ -309,6 +307,9 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
         scene.step_hooks.append(
             builtin_friction_blend(scene.contacts, case.contact.dynamic_friction, window))
     if case.contact.between_bristles and len(bristles) > 1:
+        # imported here: it loads numba, which a scene of bristles apart does not need
+        from exubrush.contact.exudyn_between import add_bristle_contact, contact_refresh
+
         scene.bristle_contact = add_bristle_contact(
             mbs, handle["nodeNumber"], polylines,
             [0.5 * max(b.width, b.height) for b in bristles], case.contact.bristles)
@@ -319,6 +320,8 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
         scene.step_hooks.append(fresh_jacobian_after_step_change())
     mbs.Assemble()
     if scene.bristle_contact is not None:
+        from exubrush.contact.exudyn_between import locate_in_system
+
         locate_in_system(mbs, scene.bristle_contact)
     return scene
 
