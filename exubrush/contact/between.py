@@ -31,10 +31,7 @@ from scipy.spatial import cKDTree
 
 from exubrush.contact.between_kernel import (  # noqa: F401  (PARALLEL, SOFT_DEPTH: the law's)
     PARALLEL,
-    POSITION_STEP,
     SOFT_DEPTH,
-    VELOCITY_STEP,
-    pairs_derivatives,
     pairs_forces,
     segments_contact,
 )
@@ -208,38 +205,6 @@ def contact_forces(chains: Chains, points: np.ndarray, velocities: np.ndarray,
                                          law)
     touching = overlap > 0.0
     return Contacts(pairs[touching], corners[touching], overlap[touching], forces[touching])
-
-
-def point_forces(contacts: Contacts, count: int) -> np.ndarray:
-    """Forces on the ``count`` points of the group [N], shape (count, 3)."""
-    forces = np.zeros((count, 3))
-    np.add.at(forces, contacts.corners.ravel(), contacts.corner_forces.reshape(-1, 3))
-    return forces
-
-
-def point_force_derivatives(chains: Chains, points: np.ndarray, velocities: np.ndarray,
-                            contacts: Contacts, law: BristleContactLaw,
-                            step: float = POSITION_STEP,
-                            velocity_step: float = VELOCITY_STEP):
-    """Derivatives of the touching pairs' corner forces with respect to their corners'
-    positions and velocities, by central differences of :func:`pair_corner_forces` (each
-    pair moved on its own) with steps ``step`` [mm] and ``velocity_step`` [mm/s].
-
-    Returns
-    -------
-    rows, columns : ndarray of int
-        Point-coordinate indices (3 · point + axis) of the force and of the coordinate;
-        repeated entries add up.
-    by_position, by_velocity : ndarray
-        ∂f/∂x [N/mm] and ∂f/∂v [N·s/mm] at (rows, columns).
-    """
-    corners, radii, inner = pair_corners(chains, contacts.pairs)
-    by_position, by_velocity = pairs_derivatives(points[corners], velocities[corners], radii,
-                                                 inner, law_vector(law), step, velocity_step)
-    coordinate = 3 * corners[:, :, None] + np.arange(3)  # (m, 4, 3)
-    rows = np.broadcast_to(coordinate[:, :, :, None, None], by_position.shape)
-    columns = np.broadcast_to(coordinate[:, None, None, :, :], by_position.shape)
-    return rows.ravel(), columns.ravel(), by_position.ravel(), by_velocity.ravel()
 
 
 def contact_locations(chains: Chains, points: np.ndarray, law: BristleContactLaw) -> np.ndarray:

@@ -8,17 +8,33 @@ from exubrush.contact.between import (
     SOFT_DEPTH,
     Chains,
     candidate_pairs,
-    contact_forces,
     contact_parameters,
+    law_vector,
     pair_corner_forces,
-    point_force_derivatives,
-    point_forces,
+    pair_corners,
+)
+from exubrush.contact.between_kernel import (
+    POSITION_STEP,
+    VELOCITY_STEP,
+    group_forces,
+    group_jacobian,
 )
 from exubrush.parameters.case import BristleContactLaw
 
 LAW = BristleContactLaw()
 FRICTIONLESS = LAW.replace(friction=0.0)
 R = 0.1  # mm, a filament's radius
+
+
+def _group_forces(chains, points, pairs, law, velocities=None):
+    """The compiled group forces [N] on each of ``points`` (3 coordinates each, q = 0)."""
+    count = len(points)
+    out = np.zeros(3 * count)
+    corners, radii, inner = pair_corners(chains, pairs)
+    velocities = np.zeros(3 * count) if velocities is None else velocities.ravel()
+    group_forces(np.zeros(3 * count), velocities, points, np.arange(3 * count).reshape(-1, 3),
+                 corners, radii, inner, law_vector(law), out)
+    return out.reshape(-1, 3)
 
 
 def _segment_distance_brute(a0, a1, b0, b1, samples=1001):
@@ -127,8 +143,7 @@ def test_a_contact_at_a_joint_counts_once():
     points = np.array([[-1, 0, 0], [0, 0, 0], [1, 0, 0], [0, -1, 0.19], [0, 1, 0.19]], float)
     pairs = candidate_pairs(chains, points)
     assert sorted(map(tuple, pairs)) == [(0, 2), (1, 2)]
-    contacts = contact_forces(chains, points, np.zeros_like(points), pairs, LAW)
-    total_on_b = point_forces(contacts, 5)[3:].sum(axis=0)
+    total_on_b = _group_forces(chains, points, pairs, LAW)[3:].sum(axis=0)
     soft = SOFT_DEPTH * 2 * R
     assert total_on_b[2] == pytest.approx(LAW.stiffness * (0.01 - 0.5 * soft), rel=1e-9)
 
@@ -142,19 +157,24 @@ def test_segments_of_one_bristle_are_never_candidates():
 def test_derivatives_match_the_stiffness_of_the_law():
     x = np.array([[-1, 0, 0], [1, 0, 0], [0, -1, 2 * R - 0.01], [0, 1, 2 * R - 0.01]], float)
     chains = Chains.from_polylines([[0, 1], [2, 3]], [R, R])
-    contacts = contact_forces(chains, x, np.zeros_like(x), np.array([[0, 1]]), FRICTIONLESS)
-    rows, columns, by_position, by_velocity = point_force_derivatives(
-        chains, x, np.zeros_like(x), contacts, FRICTIONLESS)
-    stiffness = np.zeros((12, 12))
-    np.add.at(stiffness, (rows, columns), by_position)
-    # lifting b's two points by dz lowers the overlap by dz: b's z force drops by k dz
-    lift_b = stiffness[np.ix_([8, 11], [8, 11])].sum()
-    assert lift_b == pytest.approx(-FRICTIONLESS.stiffness, rel=1e-6)
-    damping = np.zeros((12, 12))
-    np.add.at(damping, (rows, columns), by_velocity)
+    corners, radii, inner = pair_corners(chains, np.array([[0, 1]]))
+
+    def matrix(f_position, f_velocity):
+        triplets = group_jacobian(np.zeros(12), np.zeros(12), x, np.arange(12).reshape(4, 3),
+                                  corners, radii, inner, law_vector(FRICTIONLESS), f_position,
+                                  f_velocity, POSITION_STEP, VELOCITY_STEP)
+        result = np.zeros((12, 12))
+        np.add.at(result, (triplets[:, 0].astype(int), triplets[:, 1].astype(int)),
+                  triplets[:, 2])
+        return result
+
+    # lifting b's two points by dz lowers the overlap by dz: b's z force drops by k dz (the
+    # Jacobian is that of the left-hand side, −∂f/∂q)
+    lift_b = matrix(1.0, 0.0)[np.ix_([8, 11], [8, 11])].sum()
+    assert lift_b == pytest.approx(FRICTIONLESS.stiffness, rel=1e-6)
     # central differences of a linear term: exact but for rounding
-    assert damping[np.ix_([8, 11], [8, 11])].sum() == pytest.approx(-FRICTIONLESS.damping,
-                                                                    rel=1e-6)
+    assert matrix(0.0, 1.0)[np.ix_([8, 11], [8, 11])].sum() == pytest.approx(
+        FRICTIONLESS.damping, rel=1e-6)
 
 
 def test_a_contact_is_located_halfway_between_the_closest_points():
