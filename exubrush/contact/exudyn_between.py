@@ -64,6 +64,7 @@ class BristleContact:
     # corner points (m, 4), radii (m, 2) and joint flags (m, 4) of the segment pairs that
     # may touch during the coming step (refresh); None: search at every call
     candidate_corners: tuple | None = None
+    law_numbers: np.ndarray = field(init=False)  # the law as the kernels take it
 
     def __post_init__(self):
         self.law_numbers = law_vector(self.law)
@@ -72,13 +73,17 @@ class BristleContact:
         """Point positions [mm] (or velocities [mm/s], with base 0) from the object's q."""
         return self.base + q[self.coordinates]
 
+    def _pairs(self, points: np.ndarray, margin: float = 0.0) -> np.ndarray:
+        """Segment pairs within ``margin`` [mm] of touching at ``points``; none for a
+        diverged Newton iterate (rejected anyway)."""
+        if not np.all(np.abs(points) < DIVERGED):
+            return np.zeros((0, 2), int)
+        return candidate_pairs(self.chains, points, margin=margin)
+
     def _candidate_corners(self, q) -> tuple:
         if self.candidate_corners is not None:
             return self.candidate_corners
-        points = self.points(q)
-        if not np.all(np.abs(points) < DIVERGED):
-            return pair_corners(self.chains, np.zeros((0, 2), int))
-        return pair_corners(self.chains, candidate_pairs(self.chains, points))
+        return pair_corners(self.chains, self._pairs(self.points(q)))
 
     def force(self, mbs, t, item, q, q_t):
         """Exudyn force user function: the contact forces on the object's coordinates."""
@@ -113,21 +118,18 @@ class BristleContact:
         """Before a step: the segment pairs that can touch within it, from the system's
         current (converged) state, their capsules grown by ``reach`` [mm]
         (:func:`contact_refresh`)."""
-        q, q_t = self._state(mbs)
+        q, _ = self._state(mbs)
         points = self.points(q)
-        if not np.all(np.abs(points) < DIVERGED):
-            self.candidate_corners = None
-            return
-        self.candidate_corners = pair_corners(self.chains,
-                                              candidate_pairs(self.chains, points, margin=reach))
+        diverged = not np.all(np.abs(points) < DIVERGED)  # search at every call instead
+        self.candidate_corners = (None if diverged else
+                                  pair_corners(self.chains, self._pairs(points, reach)))
 
     def sample(self, mbs) -> None:
         """Record the contacts of the system's current (converged) state."""
         q, q_t = self._state(mbs)
         points = self.points(q)
-        pairs = (candidate_pairs(self.chains, points) if np.all(np.abs(points) < DIVERGED)
-                 else np.zeros((0, 2), int))
-        contacts = contact_forces(self.chains, points, q_t[self.coordinates], pairs, self.law)
+        contacts = contact_forces(self.chains, points, q_t[self.coordinates],
+                                  self._pairs(points), self.law)
         self.counts.append(len(contacts.pairs))
         self.overlaps.append(float(contacts.overlap.max()) if len(contacts.pairs) else 0.0)
 
