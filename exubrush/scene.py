@@ -316,7 +316,8 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
         scene.keep_alive.append(scene.bristle_contact)
         scene.step_hooks.append(_contact_sampler(scene.bristle_contact, case.output.interval))
         scene.step_hooks.append(contact_refresh(scene.bristle_contact, case.solver.step_size))
-    if linear_solver(case.solver, scene.bristle_contact is not None) == "EigenSparse":
+    # touching groups renew the Jacobian at every step attempt anyway (solver.dynamic_settings)
+    if scene.bristle_contact is None and linear_solver(case.solver) == "EigenSparse":
         scene.step_hooks.append(fresh_jacobian_after_step_change())
     mbs.Assemble()
     if scene.bristle_contact is not None:

@@ -20,7 +20,7 @@ from exubrush.models.dfm import add_dfm_bristle
 from exubrush.models.geometry import BristleGeometry
 from exubrush.models.prb import add_prb_bristle
 from exubrush.parameters.case import BristleContactLaw, ContactLaw, Material, Solver, Surface
-from exubrush.solver import dynamic_settings, fresh_jacobian_after_step_change, static_settings
+from exubrush.solver import dynamic_settings, static_settings
 
 
 def tip_loaded_cantilever(
@@ -176,10 +176,7 @@ def pushed_pair(bristles: tuple[BristleGeometry, BristleGeometry], force: np.nda
     locate_in_system(mbs, contact)
     samples = [-1.0]
 
-    fresh_jacobian = fresh_jacobian_after_step_change()
-
     def sample(mbs, t):
-        fresh_jacobian(mbs, t)
         if t - samples[0] >= 0.01:
             contact.sample(mbs)
             samples[0] = t
