@@ -449,10 +449,12 @@ class Solver(Parameters):
     spectral_radius: float = param(
         0.0, "generalized-alpha spectral radius at infinity (0 = most damping)", minimum=0.0
     )
-    relative_tolerance: float = param(1e-6, "Newton relative tolerance", above=0.0)
+    # below 1: at 1 or more Newton takes a step's first guess as converged, and the run
+    # failed later with a misleading cause
+    relative_tolerance: float = param(1e-6, "Newton relative tolerance", above=0.0, below=1.0)
     touching_relative_tolerance: float = param(
         1e-5, "Newton relative tolerance of a group of bristles that touch each other "
-              "(contact.between_bristles)", above=0.0,
+              "(contact.between_bristles)", above=0.0, below=1.0,
     )
     absolute_tolerance: float = param(1e-10, "Newton absolute tolerance (residual)", above=0.0)
     modified_newton: bool = param(True, "reuse the Jacobian between Newton iterations and "

@@ -51,6 +51,9 @@ CONVERSION = [
      "magnitudes"),
     (["solver.relative_tolerance=1e-30"], "solver.relative_tolerance: 1e-30 is outside the "
      "magnitudes exubrush computes with (1e-20 to 1e+20)"),
+    (["solver.relative_tolerance=10**12"], "solver.relative_tolerance: 10**12 must be < 1"),
+    (["solver.touching_relative_tolerance=1"],
+     "solver.touching_relative_tolerance: 1 must be < 1"),
     (["motion.amplitude='inf mm'"], "motion.amplitude: 'inf mm' is not a finite number"),
     (["name='" + "n" * 101 + "'"], "must be 1 to 100 printable characters"),
     (["name=''"], "name '' must be 1 to 100 printable characters"),
