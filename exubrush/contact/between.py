@@ -14,9 +14,11 @@ with zero slope) and h = min(overlap/δ, 1); and Coulomb friction against the ta
 velocity v_t, regularised below the speed v_r: f_t = −μ f_n v_t / √(|v_t|² + v_r²). The
 force acts at the two closest points with opposite signs and is handed to each segment's
 end points in proportion to the closest point's position on it ((1 − s), s), which keeps
-its resultant and its moment about any point. A crossing contact at a joint of a chain is
-found by both segments that meet there; each then counts half. Side-by-side segments count
-in proportion to the stretch they share.
+its resultant and its moment about any point. A crossing contact near a joint of a chain
+is found by both segments that meet there; it belongs to the one closer to the other
+bristle, shared between them with shares that add up to one where their distances differ
+by less than JOINT_TIE soft depths (at a joint's outer side, where both find the joint,
+half each). Side-by-side segments count in proportion to the stretch they share.
 
 The per-pair arithmetic is compiled (exubrush.contact.between_kernel); this module holds the
 chains, the broad phase and the array interface.
@@ -29,7 +31,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial import cKDTree
 
-from exubrush.contact.between_kernel import (  # noqa: F401  (PARALLEL, SOFT_DEPTH: the law's)
+from exubrush.contact.between_kernel import (  # noqa: F401  (the law's constants)
+    JOINT_TIE,
     PARALLEL,
     SOFT_DEPTH,
     pairs_forces,
@@ -58,7 +61,10 @@ class Chains:
         Contact radius of each segment [mm].
     inner_start, inner_end : ndarray (m,) of bool
         Whether the segment's start (end) is a joint shared with the next segment of its
-        chain (a contact found there counts half).
+        chain (a crossing contact is shared with it there).
+    before, after : ndarray (m,) of int
+        Point index of the far end of the chain's segment before (after) this one; the
+        segment's own start (end) where there is none.
     """
 
     starts: np.ndarray
@@ -67,11 +73,14 @@ class Chains:
     radius: np.ndarray
     inner_start: np.ndarray
     inner_end: np.ndarray
+    before: np.ndarray
+    after: np.ndarray
 
     @classmethod
     def from_polylines(cls, polylines: list[list[int]], radii: list[float]) -> Chains:
         """Chains from each bristle's point indices, root first, and its contact radius."""
         starts, ends, owner, radius, inner_start, inner_end = [], [], [], [], [], []
+        before, after = [], []
         for index, (points, r) in enumerate(zip(polylines, radii, strict=True)):
             count = len(points) - 1
             for k in range(count):
@@ -81,8 +90,11 @@ class Chains:
                 radius.append(r)
                 inner_start.append(k > 0)
                 inner_end.append(k < count - 1)
+                before.append(points[k - 1] if k > 0 else points[k])
+                after.append(points[k + 2] if k < count - 1 else points[k + 1])
         return cls(np.array(starts, int), np.array(ends, int), np.array(owner, int),
-                   np.array(radius, float), np.array(inner_start), np.array(inner_end))
+                   np.array(radius, float), np.array(inner_start), np.array(inner_end),
+                   np.array(before, int), np.array(after, int))
 
 
 def contact_parameters(a0, a1, b0, b1):
@@ -98,8 +110,8 @@ def contact_parameters(a0, a1, b0, b1):
     Returns
     -------
     points : ndarray (3, 2, ...)
-        Parameters (s, t) of the crossing contact and of the two side-by-side ends: the
-        points a0 + s (a1 − a0) and b0 + t (b1 − b0).
+        Parameters (s, t) of the closest points (the crossing contact) and of the two
+        side-by-side ends: the points a0 + s (a1 − a0) and b0 + t (b1 − b0).
     weight : ndarray (...)
         Share of the crossing contact (1 − weight goes to the side-by-side pair).
     """
@@ -154,7 +166,8 @@ class Contacts:
 
 
 def pair_corner_forces(x: np.ndarray, v: np.ndarray, radii: np.ndarray, inner: np.ndarray,
-                       law: BristleContactLaw) -> tuple[np.ndarray, np.ndarray]:
+                       law: BristleContactLaw,
+                       far: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Forces on the four corner points of segment pairs (module docstring).
 
     The force's size and direction come from the segments' closest points (their overlap
@@ -172,6 +185,9 @@ def pair_corner_forces(x: np.ndarray, v: np.ndarray, radii: np.ndarray, inner: n
         Contact radii of the two segments [mm].
     inner : ndarray (m, 4) of bool
         Whether each corner is a joint shared with the next segment of its chain.
+    far : ndarray (m, 4, 3), optional
+        The far ends of those next segments [mm] (a's before and after, then b's); needed
+        where ``inner`` has a joint.
 
     Returns
     -------
@@ -180,29 +196,33 @@ def pair_corner_forces(x: np.ndarray, v: np.ndarray, radii: np.ndarray, inner: n
     overlap : ndarray (m,)
         Sum of the radii less the segments' distance [mm] (negative: a gap).
     """
-    return pairs_forces(np.ascontiguousarray(x, float), np.ascontiguousarray(v, float),
-                        np.ascontiguousarray(radii, float), np.ascontiguousarray(inner, bool),
-                        law_vector(law))
+    x = np.ascontiguousarray(x, float)
+    far = x.copy() if far is None else np.ascontiguousarray(far, float)
+    return pairs_forces(x, np.ascontiguousarray(v, float), np.ascontiguousarray(radii, float),
+                        np.ascontiguousarray(inner, bool), far, law_vector(law))
 
 
 def pair_corners(chains: Chains, pairs: np.ndarray):
-    """Corner point indices (m, 4), radii (m, 2) and joint flags (m, 4) of segment pairs."""
+    """Corner point indices (m, 4), radii (m, 2), joint flags (m, 4) and the joints'
+    neighbours' far ends (m, 4) of segment pairs."""
     first, second = pairs[:, 0], pairs[:, 1]
     corners = np.column_stack([chains.starts[first], chains.ends[first],
                                chains.starts[second], chains.ends[second]])
     radii = np.column_stack([chains.radius[first], chains.radius[second]])
     inner = np.column_stack([chains.inner_start[first], chains.inner_end[first],
                              chains.inner_start[second], chains.inner_end[second]])
-    return corners, radii, inner
+    far = np.column_stack([chains.before[first], chains.after[first], chains.before[second],
+                           chains.after[second]])
+    return corners, radii, inner, far
 
 
 def contact_forces(chains: Chains, points: np.ndarray, velocities: np.ndarray,
                    pairs: np.ndarray, law: BristleContactLaw) -> Contacts:
     """The touching pairs among the candidate segment ``pairs`` at the given point
     positions [mm] and velocities [mm/s], and their corner forces."""
-    corners, radii, inner = pair_corners(chains, pairs)
+    corners, radii, inner, far = pair_corners(chains, pairs)
     forces, overlap = pair_corner_forces(points[corners], velocities[corners], radii, inner,
-                                         law)
+                                         law, points[far])
     touching = overlap > 0.0
     return Contacts(pairs[touching], corners[touching], overlap[touching], forces[touching])
 

@@ -29,6 +29,17 @@ _SINE2_HIGH = math.sin(PARALLEL[1]) ** 2
 # the two radii: filaments of a tuft touch all along at rest, and a kink in the force at
 # zero overlap there kept Newton from converging (docs/tufts.md)
 SOFT_DEPTH = 0.01
+# the side-by-side ends' shares are their overlaps plus this share of the soft depth (equal
+# halves where neither end overlaps); at 0.1, two filaments touching tip to tip with an
+# overlap of 0.05 soft depths put 41 % of the force at the far end of the stretch, where
+# they did not touch (a contact force 5 % above beam theory's); at 1e-4, 0.2 %
+SHARE_FLOOR = 1e-4
+# a crossing contact near a joint of a chain belongs to whichever of the two segments that
+# meet there is closer to the other bristle, shared smoothly where their distances differ
+# by less than this many soft depths (_owned): counting a contact found at a joint as a half
+# on each segment and a whole elsewhere made the force jump by half its size wherever a
+# contact passed a joint of a bent chain, and lie 1.5 times too high beside a joint
+JOINT_TIE = 0.5
 # positions beyond this [mm] are a diverged Newton iterate (a head is centimetres wide)
 DIVERGED = 1e6
 # central-difference steps of the contact's derivatives: position [mm] and velocity [mm/s]
@@ -50,13 +61,33 @@ def _clip01(value):
     return value
 
 
+@njit(inline="always")
+def _smoothstep(value):
+    u = _clip01(value)
+    return u * u * (3.0 - 2.0 * u)
+
+
+@njit(inline="always")
+def _closest(a, b, c, e, f, denom):
+    """Closest points (s, t) of two segments from Ericson's (2005, §5.1.9) products."""
+    s = _clip01((b * f - c * e) / denom if denom > 0.0 else 0.0)
+    t = (b * s + f) / e
+    if t < 0.0:
+        t = 0.0
+        s = _clip01(-c / a)
+    elif t > 1.0:
+        t = 1.0
+        s = _clip01((b - c) / a)
+    return s, t
+
+
 @njit(**_JIT)
 def segment_contact(x):
     """Contact parameters of the segments x[0]-x[1] and x[2]-x[3] (x: (4, 3) [mm]).
 
-    Returns (s, t) of the crossing contact (the closest points, Ericson 2005, §5.1.9),
-    (s, t) of both ends of the stretch the segments share side by side, and the crossing
-    contact's weight (a smoothstep in sin² of their angle between PARALLEL[0] and [1]).
+    Returns (s, t) of their closest points (Ericson 2005, §5.1.9), (s, t) of both ends of
+    the stretch the segments share side by side, and the crossing contact's weight (a
+    smoothstep in sin² of their angle between PARALLEL[0] and [1]).
     """
     d1x, d1y, d1z = x[1, 0] - x[0, 0], x[1, 1] - x[0, 1], x[1, 2] - x[0, 2]
     d2x, d2y, d2z = x[3, 0] - x[2, 0], x[3, 1] - x[2, 1], x[3, 2] - x[2, 2]
@@ -68,15 +99,7 @@ def segment_contact(x):
     b = d1x * d2x + d1y * d2y + d1z * d2z
     denom = a * e - b * b  # |d1|² |d2|² sin² of the angle between them
     sine2 = _clip01(denom / (a * e))
-    crossing = _clip01((b * f - c * e) / (denom if denom > 0.0 else 1.0))
-    t = (b * crossing + f) / e
-    if t < 0.0:
-        s_crossing = _clip01(-c / a)
-    elif t > 1.0:
-        s_crossing = _clip01((b - c) / a)
-    else:
-        s_crossing = crossing
-    t_crossing = _clip01(t)
+    s_closest, t_closest = _closest(a, b, c, e, f, denom)
     # side by side: the ends of b's shadow on a, and the points of b across from them
     first, second = -c / a, (b - c) / a
     s_low = _clip01(min(first, second))
@@ -85,7 +108,47 @@ def segment_contact(x):
     t_high = _clip01((b * s_high + f) / e)
     blend = _clip01((sine2 - _SINE2_LOW) / (_SINE2_HIGH - _SINE2_LOW))
     weight = blend * blend * (3.0 - 2.0 * blend)  # 0 side by side, 1 crossing
-    return s_crossing, t_crossing, s_low, t_low, s_high, t_high, weight
+    return s_closest, t_closest, s_low, t_low, s_high, t_high, weight
+
+
+@njit(inline="always")
+def _distance(p0, p1, q0, q1):
+    """Distance [mm] between the segments p0-p1 and q0-q1 ((3,) arrays)."""
+    d1x, d1y, d1z = p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]
+    d2x, d2y, d2z = q1[0] - q0[0], q1[1] - q0[1], q1[2] - q0[2]
+    rx, ry, rz = p0[0] - q0[0], p0[1] - q0[1], p0[2] - q0[2]
+    a = d1x * d1x + d1y * d1y + d1z * d1z
+    e = d2x * d2x + d2y * d2y + d2z * d2z
+    b = d1x * d2x + d1y * d2y + d1z * d2z
+    s, t = _closest(a, b, d1x * rx + d1y * ry + d1z * rz, e, d2x * rx + d2y * ry + d2z * rz,
+                    a * e - b * b)
+    dx, dy, dz = rx + s * d1x - t * d2x, ry + s * d1y - t * d2y, rz + s * d1z - t * d2z
+    return math.sqrt(dx * dx + dy * dy + dz * dz)
+
+
+@njit(inline="always")
+def _preferred(margin, tie):
+    """Share of a contact that a segment keeps against a neighbour ``margin`` [mm] farther
+    from the other segment than itself: 1/2 at a tie, rising smoothly to 1 at ``tie``
+    farther and falling to 0 at ``tie`` closer (the neighbour's share is the rest)."""
+    return _smoothstep((margin + tie) / (2.0 * tie))
+
+
+@njit(inline="always")
+def _owned(x, far, inner, distance, tie):
+    """Share of a crossing contact at ``distance`` [mm] that the pair x (4, 3) owns: the
+    product of _preferred against each segment's neighbours across its inner ends (far:
+    the neighbours' other ends, a's before and after, then b's)."""
+    share = 1.0
+    if inner[0]:
+        share *= _preferred(_distance(far[0], x[0], x[2], x[3]) - distance, tie)
+    if inner[1]:
+        share *= _preferred(_distance(x[1], far[1], x[2], x[3]) - distance, tie)
+    if inner[2]:
+        share *= _preferred(_distance(x[0], x[1], far[2], x[2]) - distance, tie)
+    if inner[3]:
+        share *= _preferred(_distance(x[0], x[1], x[3], far[3]) - distance, tie)
+    return share
 
 
 @njit(inline="always")
@@ -105,53 +168,18 @@ def _relative_velocity(v, s, t, axis):
 
 
 @njit(inline="always")
-def _blended_velocity(v, s0, t0, s1, t1, s2, t2, share0, share1, share2, axis):
-    """The contact's relative velocity [mm/s]: the three contact points' (crossing and
-    both side-by-side ends), weighted by their shares."""
-    return (share0 * _relative_velocity(v, s0, t0, axis)
-            + share1 * _relative_velocity(v, s1, t1, axis)
+def _side_velocity(v, s1, t1, s2, t2, share1, share2, axis):
+    """A side-by-side contact's relative velocity [mm/s]: its two ends', by their shares."""
+    return (share1 * _relative_velocity(v, s1, t1, axis)
             + share2 * _relative_velocity(v, s2, t2, axis))
 
 
 @njit(inline="always")
-def _joint_weight(parameter, inner_start, inner_end):
-    """1/2 where the contact point is a joint shared with the chain's next segment (both
-    segments find it). A weight rising smoothly from 1/2 over a tenth of the segment was
-    tried: a 7-filament tuft then took 1,515 steps and 4,130 Jacobians for 1.55 s instead
-    of 910 and 1,209 (3.3x the wall time), so the step stays."""
-    if (parameter == 0.0 and inner_start) or (parameter == 1.0 and inner_end):
-        return 0.5
-    return 1.0
-
-
-@njit(**_JIT)
-def pair_force(x, v, radius_a, radius_b, inner, law, out):
-    """Forces [N] on the four corners of one segment pair into ``out`` (4, 3); returns the
-    overlap [mm] (negative: a gap). exubrush.contact.between.pair_corner_forces says
-    where the force acts; ``law`` = (stiffness, damping, friction, friction velocity)."""
+def _law(law, soft, overlap, nx, ny, nz, rx, ry, rz):
+    """The force [N] on the second segment of a contact of ``overlap`` [mm] > 0 along the
+    unit normal n, the second's velocity relative to the first being r [mm/s]: a penalty
+    with zero slope at first touch, damping that never pulls, regularised friction."""
     stiffness, damping, friction, friction_velocity = law[0], law[1], law[2], law[3]
-    s0, t0, s1, t1, s2, t2, crossing = segment_contact(x)
-    reach = radius_a + radius_b
-    soft = SOFT_DEPTH * reach
-    nx, ny, nz, distance = _between(x, s0, t0)
-    overlap = reach - distance
-    for corner in range(4):
-        for axis in range(3):
-            out[corner, axis] = 0.0
-    if not (overlap > 0.0 and distance > 0.0):
-        return overlap
-    nx, ny, nz = nx / distance, ny / distance, nz / distance
-    # the side-by-side ends' shares, from their own overlaps
-    depth_low = max(reach - _between(x, s1, t1)[3], 0.0) + 0.1 * soft
-    depth_high = max(reach - _between(x, s2, t2)[3], 0.0) + 0.1 * soft
-    low_share = depth_low / (depth_low + depth_high)
-    # a side-by-side contact counts in proportion to the stretch the two segments share
-    side = (1.0 - crossing) * 0.5 * (abs(s2 - s1) + abs(t2 - t1))
-    share1, share2 = side * low_share, side * (1.0 - low_share)
-    rx = _blended_velocity(v, s0, t0, s1, t1, s2, t2, crossing, share1, share2, 0)
-    ry = _blended_velocity(v, s0, t0, s1, t1, s2, t2, crossing, share1, share2, 1)
-    rz = _blended_velocity(v, s0, t0, s1, t1, s2, t2, crossing, share1, share2, 2)
-    # the law: a penalty with zero slope at first touch, damping, regularised friction
     approach = nx * rx + ny * ry + nz * rz
     if overlap < soft:
         elastic = stiffness * 0.5 * overlap * overlap / soft
@@ -164,42 +192,82 @@ def pair_force(x, v, radius_a, radius_b, inner, law, out):
     # tuft 14 % more steps and 19 % more Jacobians (approach and 0.1 period)
     slip = friction * normal_force / math.sqrt(speed * speed
                                                + friction_velocity * friction_velocity)
-    fx = normal_force * nx - slip * sx
-    fy = normal_force * ny - slip * sy
-    fz = normal_force * nz - slip * sz
-    # handed to the corners in proportion to where each contact point lies
-    weights = (crossing * _joint_weight(s0, inner[0], inner[1])
-               * _joint_weight(t0, inner[2], inner[3]), share1, share2)
-    params = ((s0, t0), (s1, t1), (s2, t2))
-    for index in range(3):
-        w = weights[index]
-        s, t = params[index]
-        shares = (-(1.0 - s) * w, -s * w, (1.0 - t) * w, t * w)
-        for corner in range(4):
-            out[corner, 0] += shares[corner] * fx
-            out[corner, 1] += shares[corner] * fy
-            out[corner, 2] += shares[corner] * fz
+    return (normal_force * nx - slip * sx, normal_force * ny - slip * sy,
+            normal_force * nz - slip * sz)
+
+
+@njit(inline="always")
+def _hand_to_corners(out, s, t, weight, fx, fy, fz):
+    """Add the force f [N] on the second segment's point t (and −f on the first's point s),
+    times ``weight``, to the four corners in proportion to where the points lie."""
+    shares = (-(1.0 - s) * weight, -s * weight, (1.0 - t) * weight, t * weight)
+    for corner in range(4):
+        out[corner, 0] += shares[corner] * fx
+        out[corner, 1] += shares[corner] * fy
+        out[corner, 2] += shares[corner] * fz
+
+
+@njit(**_JIT)
+def pair_force(x, v, radius_a, radius_b, inner, far, law, out):
+    """Forces [N] on the four corners of one segment pair into ``out`` (4, 3); returns the
+    overlap [mm] (negative: a gap). exubrush.contact.between.pair_corner_forces says
+    where the force acts; ``inner`` (4,) whether each corner is a joint with the chain's
+    next segment, ``far`` (4, 3) those neighbours' other ends (a's before and after, then
+    b's); ``law`` = (stiffness, damping, friction, friction velocity)."""
+    s0, t0, s1, t1, s2, t2, crossing = segment_contact(x)
+    reach = radius_a + radius_b
+    soft = SOFT_DEPTH * reach
+    for corner in range(4):
+        for axis in range(3):
+            out[corner, axis] = 0.0
+    nx, ny, nz, distance = _between(x, s0, t0)
+    overlap = reach - distance
+    if not (overlap > 0.0 and distance > 0.0):
+        return overlap
+    nx, ny, nz = nx / distance, ny / distance, nz / distance
+    # side by side: along the common normal, acting at both ends of the common stretch in
+    # proportion to the stretch and to the ends' own overlaps
+    side = (1.0 - crossing) * 0.5 * (abs(s2 - s1) + abs(t2 - t1))
+    if side > 0.0:
+        depth_low = max(reach - _between(x, s1, t1)[3], 0.0) + SHARE_FLOOR * soft
+        depth_high = max(reach - _between(x, s2, t2)[3], 0.0) + SHARE_FLOOR * soft
+        low_share = depth_low / (depth_low + depth_high)
+        share1, share2 = side * low_share, side * (1.0 - low_share)
+        fx, fy, fz = _law(law, soft, overlap, nx, ny, nz,
+                          _side_velocity(v, s1, t1, s2, t2, share1, share2, 0),
+                          _side_velocity(v, s1, t1, s2, t2, share1, share2, 1),
+                          _side_velocity(v, s1, t1, s2, t2, share1, share2, 2))
+        _hand_to_corners(out, s1, t1, share1, fx, fy, fz)
+        _hand_to_corners(out, s2, t2, share2, fx, fy, fz)
+    # crossing: at the closest points, shared with a neighbour across a joint
+    if crossing > 0.0:
+        weight = crossing * _owned(x, far, inner, distance, JOINT_TIE * soft)
+        fx, fy, fz = _law(law, soft, overlap, nx, ny, nz, _relative_velocity(v, s0, t0, 0),
+                          _relative_velocity(v, s0, t0, 1), _relative_velocity(v, s0, t0, 2))
+        _hand_to_corners(out, s0, t0, weight, fx, fy, fz)
     return overlap
 
 
 @njit(**_JIT)
-def pairs_forces(x, v, radii, inner, law):
-    """pair_force for every pair: x, v (m, 4, 3), radii (m, 2), inner (m, 4); returns the
-    forces (m, 4, 3) [N] and overlaps (m,) [mm]."""
+def pairs_forces(x, v, radii, inner, far, law):
+    """pair_force for every pair: x, v (m, 4, 3), radii (m, 2), inner (m, 4), far (m, 4,
+    3); returns the forces (m, 4, 3) [N] and overlaps (m,) [mm]."""
     count = x.shape[0]
     forces = np.zeros((count, 4, 3))
     overlap = np.empty(count)
     for k in range(count):
-        overlap[k] = pair_force(x[k], v[k], radii[k, 0], radii[k, 1], inner[k], law,
+        overlap[k] = pair_force(x[k], v[k], radii[k, 0], radii[k, 1], inner[k], far[k], law,
                                 forces[k])
     return forces, overlap
 
 
 @njit(**_JIT)
-def pairs_derivatives(x, v, radii, inner, law, step, velocity_step):
+def pairs_derivatives(x, v, radii, inner, far, law, step, velocity_step):
     """Central differences of pair_force with respect to each pair's 12 corner positions
     (step [mm]) and 12 velocities (velocity_step [mm/s]); returns ∂f/∂x [N/mm] and ∂f/∂v
-    [N·s/mm], each (m, 4, 3, 4, 3): force corner and axis by moved corner and axis."""
+    [N·s/mm], each (m, 4, 3, 4, 3): force corner and axis by moved corner and axis. The
+    neighbours' far ends stay put: a joint's share (_owned) follows the pair's own corners,
+    not the far end of the neighbour it is compared with."""
     count = x.shape[0]
     by_position = np.empty((count, 4, 3, 4, 3))
     by_velocity = np.empty((count, 4, 3, 4, 3))
@@ -214,9 +282,10 @@ def pairs_derivatives(x, v, radii, inner, law, step, velocity_step):
                 for axis in range(3):
                     held = moved[corner, axis]
                     moved[corner, axis] = held + size
-                    pair_force(xk, vk, radii[k, 0], radii[k, 1], inner[k], law, plus)
+                    pair_force(xk, vk, radii[k, 0], radii[k, 1], inner[k], far[k], law, plus)
                     moved[corner, axis] = held - size
-                    pair_force(xk, vk, radii[k, 0], radii[k, 1], inner[k], law, minus)
+                    pair_force(xk, vk, radii[k, 0], radii[k, 1], inner[k], far[k], law,
+                               minus)
                     moved[corner, axis] = held
                     for row in range(4):
                         for column in range(3):
@@ -262,21 +331,23 @@ def _sane(q, q_t, base, coordinates):
 
 
 @njit(**_JIT)
-def group_forces(q, q_t, base, coordinates, corners, radii, inner, law, out):
+def group_forces(q, q_t, base, coordinates, corners, radii, inner, far, law, out):
     """Add the contact forces of the candidate pairs to ``out`` (the group object's
     generalised forces [N]); q, q_t its coordinates [mm] and velocities [mm/s], base the
     points at q = 0, coordinates (points, 3) each point's entries in q, corners (m, 4) the
-    candidate pairs' corner points. Returns the number of touching pairs (-1: a diverged
-    state, no forces)."""
+    candidate pairs' corner points, far (m, 4) their neighbours' far ends (pair_force).
+    Returns the number of touching pairs (-1: a diverged state, no forces)."""
     if not _sane(q, q_t, base, coordinates):
         return -1
     x, v, forces = np.empty((4, 3)), np.empty((4, 3)), np.empty((4, 3))
+    beyond = np.empty((4, 3))
     zero = np.zeros(base.shape)
     touching = 0
     for k in range(corners.shape[0]):
         _gather(q, base, coordinates, corners, k, x)
         _gather(q_t, zero, coordinates, corners, k, v)
-        if pair_force(x, v, radii[k, 0], radii[k, 1], inner[k], law, forces) > 0.0:
+        _gather(q, base, coordinates, far, k, beyond)
+        if pair_force(x, v, radii[k, 0], radii[k, 1], inner[k], beyond, law, forces) > 0.0:
             touching += 1
             for corner in range(4):
                 for axis in range(3):
@@ -285,7 +356,7 @@ def group_forces(q, q_t, base, coordinates, corners, radii, inner, law, out):
 
 
 @njit(**_JIT)
-def group_jacobian(q, q_t, base, coordinates, corners, radii, inner, law, f_position,
+def group_jacobian(q, q_t, base, coordinates, corners, radii, inner, far, law, f_position,
                    f_velocity, step, velocity_step):
     """Sparse triplets (row, column, value) of −(∂f/∂q · f_position + ∂f/∂q_t ·
     f_velocity) of the touching candidate pairs (group_forces' arguments), in the group
@@ -293,17 +364,20 @@ def group_jacobian(q, q_t, base, coordinates, corners, radii, inner, law, f_posi
     if not _sane(q, q_t, base, coordinates):
         return np.zeros((0, 3))
     count = corners.shape[0]
-    x, v, forces = np.empty((count, 4, 3)), np.empty((count, 4, 3)), np.empty((4, 3))
+    x, v, beyond = np.empty((count, 4, 3)), np.empty((count, 4, 3)), np.empty((count, 4, 3))
+    forces = np.empty((4, 3))
     zero = np.zeros(base.shape)
     touching = np.zeros(count, np.bool_)
     for k in range(count):
         _gather(q, base, coordinates, corners, k, x[k])
         _gather(q_t, zero, coordinates, corners, k, v[k])
-        touching[k] = pair_force(x[k], v[k], radii[k, 0], radii[k, 1], inner[k], law,
-                                 forces) > 0.0
+        _gather(q, base, coordinates, far, k, beyond[k])
+        touching[k] = pair_force(x[k], v[k], radii[k, 0], radii[k, 1], inner[k], beyond[k],
+                                 law, forces) > 0.0
     chosen = np.nonzero(touching)[0]
     by_position, by_velocity = pairs_derivatives(x[chosen], v[chosen], radii[chosen],
-                                                 inner[chosen], law, step, velocity_step)
+                                                 inner[chosen], beyond[chosen], law, step,
+                                                 velocity_step)
     triplets = np.empty((144 * len(chosen), 3))
     entry = 0
     for n in range(len(chosen)):
