@@ -3,6 +3,8 @@ tip sphere pressed onto a surface and a bristle pushed against its neighbour."""
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import exudyn as exu
 import exudyn.itemInterface as eii
 import numpy as np
@@ -132,21 +134,44 @@ def sphere_pressed_on_surface(surface: Surface, law: ContactLaw, radius: float, 
     return np.asarray(mbs.GetNodeOutput(body["nodeNumber"], exu.OutputVariableType.Position))
 
 
-def pushed_pair(bristles: tuple[BristleGeometry, BristleGeometry], force: np.ndarray,
-                law: BristleContactLaw, segments: int = 12, ramp: float = 1.0,
-                step_size: float = 2e-3):
-    """Two DFM bristles clamped to a fixed base, a dead force on the first's tip ramped up
-    over ``ramp`` [s] and held for a fifth of that, with contact between them
-    (exubrush.contact.exudyn_between): quasi-static, settled by the bristles' damping.
+@dataclass(frozen=True)
+class PushedPair:
+    """End state of :func:`pushed_pair`.
 
-    Returns
-    -------
+    Attributes
+    ----------
     tips : ndarray (2, 3)
         Both tip positions at the end [mm].
     deepest : float
         Deepest overlap of the two bristles seen at any 0.01 s sample [mm].
+    contact_force : ndarray (3,)
+        Contact force on the second bristle at the end [N].
     completed : bool
         Whether the solve reached the end.
+    """
+
+    tips: np.ndarray
+    deepest: float
+    contact_force: np.ndarray
+    completed: bool
+
+
+def pushed_pair(bristles: tuple[BristleGeometry, BristleGeometry], force: np.ndarray,
+                law: BristleContactLaw, segments: int = 12, ramp: float = 1.0,
+                step_size: float = 2e-3, in_plane: bool = False):
+    """Two DFM bristles clamped to a fixed base, a dead force on the first's tip ramped up
+    over ``ramp`` [s] and held for a fifth of that, with contact between them
+    (exubrush.contact.exudyn_between): quasi-static, settled by the bristles' damping.
+
+    ``in_plane``: every node's y coordinate is held, so the pair bends in the x-z plane
+    only, as the planar reference does (exubrush.reference.touching_cantilevers). Round
+    filaments pressed hard tip on side are unstable out of that plane: the pushed tip
+    slides round its neighbour (beyond about P = 0.5 mN for two 0.2 mm nylon filaments
+    10 mm long, where the contact force over the diameter exceeds their lateral stiffness).
+
+    Returns
+    -------
+    PushedPair
     """
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
@@ -161,6 +186,9 @@ def pushed_pair(bristles: tuple[BristleGeometry, BristleGeometry], force: np.nda
         mbs.AddObject(eii.ObjectConnectorCoordinate(markerNumbers=[fixed, marker]))
     items = [add_dfm_bristle(mbs, base["bodyNumber"], b, b.material, segments)
              for b in bristles]
+    for node in (n for it in items for n in it.nodes) if in_plane else ():
+        held = mbs.AddMarker(eii.MarkerNodeCoordinate(nodeNumber=node, coordinate=1))
+        mbs.AddObject(eii.ObjectConnectorCoordinate(markerNumbers=[fixed, held]))
     contact = add_bristle_contact(
         mbs, base["nodeNumber"],
         [[("handle", b.root)] + [("node", n) for n in it.nodes]
@@ -191,4 +219,4 @@ def pushed_pair(bristles: tuple[BristleGeometry, BristleGeometry], force: np.nda
     contact.sample(mbs)
     tips = np.array([mbs.GetNodeOutput(it.nodes[-1], exu.OutputVariableType.Position)
                      for it in items])
-    return tips, max(contact.overlaps), completed
+    return PushedPair(tips, max(contact.overlaps), contact.resultants(mbs)[1], completed)

@@ -61,8 +61,9 @@ class BristleContact:
     object_number: int = -1
     counts: list = field(default_factory=list)
     overlaps: list = field(default_factory=list)
-    # corner points (m, 4), radii (m, 2) and joint flags (m, 4) of the segment pairs that
-    # may touch during the coming step (refresh); None: search at every call
+    # corner points (m, 4), radii (m, 2), joint flags (m, 4) and neighbours' far ends (m, 4)
+    # of the segment pairs that may touch during the coming step (refresh); None: search at
+    # every call
     candidate_corners: tuple | None = None
     law_numbers: np.ndarray = field(init=False)  # the law as the kernels take it
 
@@ -89,10 +90,10 @@ class BristleContact:
         """Exudyn force user function: the contact forces on the object's coordinates."""
         out = np.zeros(self.size)
         q = np.asarray(q)
-        corners, radii, inner = self._candidate_corners(q)
+        corners, radii, inner, far = self._candidate_corners(q)
         if len(corners):
             group_forces(q, np.asarray(q_t), self.base, self.coordinates, corners, radii,
-                         inner, self.law_numbers, out)
+                         inner, far, self.law_numbers, out)
         return out
 
     def jacobian(self, mbs, t, item, q, q_t, f_position, f_velocity):
@@ -100,11 +101,11 @@ class BristleContact:
         the touching pairs, as sparse triplets in the object's coordinates."""
         matrix = exu.MatrixContainer()
         q = np.asarray(q)
-        corners, radii, inner = self._candidate_corners(q)
+        corners, radii, inner, far = self._candidate_corners(q)
         triplets = np.zeros((0, 3))
         if len(corners):
             triplets = group_jacobian(q, np.asarray(q_t), self.base, self.coordinates,
-                                      corners, radii, inner, self.law_numbers, f_position,
+                                      corners, radii, inner, far, self.law_numbers, f_position,
                                       f_velocity, POSITION_STEP, VELOCITY_STEP)
         matrix.SetWithSparseMatrix(triplets, self.size, self.size)
         return matrix
@@ -132,6 +133,22 @@ class BristleContact:
                                   self._pairs(points), self.law)
         self.counts.append(len(contacts.pairs))
         self.overlaps.append(float(contacts.overlap.max()) if len(contacts.pairs) else 0.0)
+
+
+    def resultants(self, mbs) -> np.ndarray:
+        """Total contact force [N] on each bristle of the group (bristles, 3) at the
+        system's current state."""
+        q, q_t = self._state(mbs)
+        points = self.points(q)
+        contacts = contact_forces(self.chains, points, q_t[self.coordinates],
+                                  self._pairs(points), self.law)
+        owner = np.zeros(len(points), int)
+        owner[self.chains.starts] = self.chains.bristle
+        owner[self.chains.ends] = self.chains.bristle
+        totals = np.zeros((int(self.chains.bristle.max()) + 1, 3))
+        np.add.at(totals, owner[contacts.corners].ravel(),
+                  contacts.corner_forces.reshape(-1, 3))
+        return totals
 
 
 def contact_refresh(contact: BristleContact, step_size: float, margin: float = 0.1):

@@ -1,0 +1,182 @@
+"""Two parallel cantilevers, a dead tip load on the first pushing it onto the second: the
+large-deflection reference of the contact between bristles (mm-N).
+
+Both beams are inextensible and unshearable (Euler elastica), identical (length ``L``,
+bending stiffness ``EI``, round section of radius ``r``), clamped upright at x = 0 and
+x = 2r + gap, and bend in the x-z plane. A force ``P`` along +x acts on the first one's
+tip. The first beam's tip is the centre of a sphere of radius r (the capsule's end cap);
+the second beam is a chain of capsules of radius r. Once the tip reaches the second beam
+it presses on it without friction; pushed further, the beams also touch along their
+length (two 10 mm nylon filaments 0.2 mm thick from about P = 2 mN): every point of each
+chain is kept at least 2r from the other chain, and the second beam carries the contact
+forces alone.
+
+Method: each beam is a Hencky bar chain (Hencky 1921): ``segments`` rotational springs
+of stiffness EI/h at the midpoints s = (j + 1/2) h of the arc length, joined by rigid bars
+(half bars at the clamp and at the tip), which makes the chain's compliance the midpoint
+rule of the elastica's, with errors of order h². The equilibrium is the minimum of the
+springs' energy less the load's work, P x_tip, with those clearances as constraints
+(scipy's SLSQP, analytic gradients), reached through load steps from the straight beams.
+The contact forces are the constraints' multipliers, found from the equilibrium the
+minimum satisfies (the energy's gradient a non-negative combination of the touching
+clearances' gradients).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import minimize, nnls
+
+
+@dataclass(frozen=True)
+class TouchingCantilevers:
+    """Equilibrium of the pushed pair.
+
+    Attributes
+    ----------
+    first, second : ndarray (segments + 2, 2)
+        Points of each chain (x, z) [mm], root first, tip last.
+    contact_force : ndarray (2,)
+        Resultant (x, z) of the contact forces on the second beam [N] (zero if they do
+        not touch).
+    """
+
+    first: np.ndarray
+    second: np.ndarray
+    contact_force: np.ndarray
+
+    @property
+    def tips(self) -> np.ndarray:
+        """Tip positions (2, 2) [mm], first beam's first."""
+        return np.array([self.first[-1], self.second[-1]])
+
+
+def _bars(length: float, segments: int) -> np.ndarray:
+    h = length / segments
+    return np.r_[0.5 * h, np.full(segments - 1, h), 0.5 * h]
+
+
+def _points(angles: np.ndarray, bars: np.ndarray, root_x: float) -> np.ndarray:
+    """Chain points (x, z) [mm], root first: the clamp's half bar upright, then bars at
+    ``angles`` from the vertical (positive towards +x)."""
+    theta = np.r_[0.0, angles]
+    steps = bars[:, None] * np.column_stack([np.sin(theta), np.cos(theta)])
+    return np.vstack([np.zeros(2), np.cumsum(steps, axis=0)]) + [root_x, 0.0]
+
+
+def _point_derivatives(angles: np.ndarray, bars: np.ndarray) -> np.ndarray:
+    """d point_i / d angle_j, shape (points, angles, 2): bar j + 1 moves every later point."""
+    moved = bars[1:, None] * np.column_stack([np.cos(angles), -np.sin(angles)])
+    later = np.arange(len(bars) + 1)[:, None] >= np.arange(len(angles))[None, :] + 2
+    return later[:, :, None] * moved[None, :, :]
+
+
+def _closest_on_chain(points: np.ndarray, chain: np.ndarray):
+    """For each of ``points`` (p, 2): the segment of ``chain`` closest to it, the parameter
+    there and the nearest point (p, 2)."""
+    start, direction = chain[:-1], np.diff(chain, axis=0)
+    u = np.clip(((points[:, None, :] - start) * direction).sum(axis=2)
+                / (direction * direction).sum(axis=1), 0.0, 1.0)  # (p, segments)
+    nearest = start + u[:, :, None] * direction
+    k = np.argmin(np.linalg.norm(nearest - points[:, None, :], axis=2), axis=1)
+    rows = np.arange(len(points))
+    return k, u[rows, k], nearest[rows, k]
+
+
+def touching_cantilevers(length: float, gap: float, radius: float, bending_stiffness: float,
+                         load: float, segments: int = 100,
+                         load_steps: int = 10) -> TouchingCantilevers:
+    """Equilibrium of the pair (module docstring) under the tip load ``load`` [N].
+
+    Parameters
+    ----------
+    length : float
+        Length of each beam, root to tip [mm].
+    gap : float
+        Clear gap between the upright beams' surfaces [mm].
+    radius : float
+        Radius of each beam's section and of the tip's cap [mm].
+    bending_stiffness : float
+        EI [N·mm²].
+    segments : int
+        Springs per beam (errors of order 1/segments²).
+    load_steps : int
+        Equal load steps from zero, each solve starting from the last.
+    """
+    bars = _bars(length, segments)
+    k = bending_stiffness / (length / segments)
+    second_root = 2.0 * radius + gap
+    n = segments
+
+    def split(v):
+        return v[:n], v[n:]
+
+    def energy(v, force):
+        a, b = split(v)
+        bend = 0.5 * k * (np.sum(np.diff(np.r_[0.0, a]) ** 2) + np.sum(np.diff(np.r_[0.0, b]) ** 2))
+        return bend - force * _points(a, bars, 0.0)[-1, 0]
+
+    def gradient(v, force):
+        a, b = split(v)
+        grad = []
+        for angles in (a, b):
+            d = np.diff(np.r_[0.0, angles])
+            grad.append(k * (d - np.r_[d[1:], 0.0]))
+        grad[0] = grad[0] - force * _point_derivatives(a, bars)[-1, :, 0]
+        return np.r_[grad[0], grad[1]]
+
+    def geometry(v):
+        """Every point of either beam (first's, then second's) against the other beam:
+        angles, points (2 (n + 2), 2), the nearest points, the segments and parameters
+        there."""
+        angles = (v[:n], v[n:])
+        chains = (_points(angles[0], bars, 0.0), _points(angles[1], bars, second_root))
+        found = [_closest_on_chain(chains[pressing], chains[1 - pressing])
+                 for pressing in (0, 1)]
+        return (angles, np.vstack(chains), np.vstack([f[2] for f in found]),
+                np.concatenate([f[0] for f in found]), np.concatenate([f[1] for f in found]))
+
+    def clearances(v):
+        _, points, nearest, _, _ = geometry(v)
+        return np.linalg.norm(points - nearest, axis=1) - 2.0 * radius
+
+    def clearance_gradients(v):
+        angles, points, nearest, segment, u = geometry(v)
+        normal = (points - nearest) / np.linalg.norm(points - nearest, axis=1)[:, None]
+        result = np.zeros((len(points), 2 * n))
+        for pressing in (0, 1):
+            rows = slice(pressing * (n + 2), (pressing + 1) * (n + 2))
+            own = _point_derivatives(angles[pressing], bars)
+            other = _point_derivatives(angles[1 - pressing], bars)
+            k, w, m = segment[rows], u[rows, None, None], normal[rows][:, None, :]
+            moved = (1.0 - w) * other[k] + w * other[k + 1]  # (points, n, 2)
+            result[rows, pressing * n:(pressing + 1) * n] = np.sum(own * m, axis=2)
+            result[rows, (1 - pressing) * n:(2 - pressing) * n] = -np.sum(moved * m, axis=2)
+        return result
+
+    constraints = [{"type": "ineq", "fun": clearances, "jac": clearance_gradients}]
+    v = np.zeros(2 * n)
+    for force in load * np.arange(1, load_steps + 1) / load_steps:
+        found = minimize(energy, v, args=(force,), jac=gradient, method="SLSQP",
+                         constraints=constraints,
+                         options={"maxiter": 2000, "ftol": 1e-16})
+        if not found.success:
+            raise RuntimeError(f"touching_cantilevers: no equilibrium at P = {force:g} N "
+                               f"({found.message})")
+        v = found.x
+    first, second = _points(v[:n], bars, 0.0), _points(v[n:], bars, second_root)
+    # the contact forces: the multipliers of the touching points, from the equilibrium
+    # ∇(energy) = Σ λ ∇(clearance) (non-negative least squares)
+    _, points, nearest, _, _ = geometry(v)
+    active = np.nonzero(clearances(v) < 1e-6 * length)[0]
+    total = np.zeros(2)
+    if len(active):
+        multipliers, _ = nnls(clearance_gradients(v)[active].T, gradient(v, load))
+        normal = points[active] - nearest[active]
+        normal /= np.linalg.norm(normal, axis=1)[:, None]
+        # on the second beam: −normal where the first's point presses, +normal where its own
+        sign = np.where(active >= n + 2, 1.0, -1.0)
+        total = (multipliers * sign) @ normal
+    return TouchingCantilevers(first, second, total)
