@@ -633,5 +633,29 @@ def tuft_case() -> Case:
                    motion=replace(base.motion, interaction_distance=8.4))
 
 
+# a typical manual toothbrush (docs/tufts.md, "The manual-brush case", gives the sources):
+# 4 rows of 10 tufts, each the `tuft` case's 37 nylon filaments of 0.2 mm in a 1.6 mm hole
+MANUAL_BRUSH_ROWS, MANUAL_BRUSH_COLUMNS = 4, 10
+MANUAL_BRUSH_PITCH = (2.4, 2.3)  # mm, along and across the head (holes 0.8 / 0.7 mm apart)
+
+
+def manual_brush_case() -> Case:
+    """A typical full manual toothbrush head: 40 tufts (4 rows of 10) of 37 round nylon
+    filaments each (0.2 mm, 10.5 mm trim length, hexagonal in 1.6 mm holes on a 2.4 x 2.3
+    mm pitch), 1,480 filaments, in the orthogonal motion at d = 8.4 mm (the `tuft` case's
+    interference) for one slide period. Contact between bristles stays off: every tuft
+    reaches its neighbours, so with it the whole head is one system (docs/tufts.md)."""
+    base = tuft_case()
+    along, across = MANUAL_BRUSH_PITCH
+    tufts = tuple(
+        Tuft(name=f"r{row + 1}c{column + 1}",
+             x=(column - (MANUAL_BRUSH_COLUMNS - 1) / 2) * along,
+             y=(row - (MANUAL_BRUSH_ROWS - 1) / 2) * across)
+        for row in range(MANUAL_BRUSH_ROWS) for column in range(MANUAL_BRUSH_COLUMNS))
+    return replace(base, name="manual-brush", head=replace(base.head, tufts=tufts),
+                   motion=replace(base.motion, periods=1.0))
+
+
 BUILT_IN_CASES = {"orthogonal": orthogonal_case, "parallel": parallel_case,
-                  "interdental": interdental_case, "crown": crown_case, "tuft": tuft_case}
+                  "interdental": interdental_case, "crown": crown_case, "tuft": tuft_case,
+                  "manual-brush": manual_brush_case}

@@ -175,5 +175,21 @@ def test_a_run_with_contact_between_bristles_is_warned_of_its_cost():
         "took 136 s per slide period, 5 s without)",)
 
 
+def test_the_manual_brush_is_40_tufts_of_37_filaments_that_reach_each_other():
+    from exubrush.models.geometry import touching_groups
+
+    case = load_case("manual-brush")
+    bristles = head_bristles(case.head)
+    assert len(case.head.tufts) == 40 and len(bristles) == 40 * 37
+    # the typical ranges: 20-50 tufts of 20-50 filaments, 0.15-0.25 mm, trim length
+    # 10-11 mm, holes 1.5-2 mm
+    tuft = case.head.tufts[0]
+    assert 0.15 <= tuft.width <= 0.25 and 10.0 <= tuft.length + tuft.tip_radius <= 11.0
+    assert 1.5 <= tuft.diameter <= 2.0
+    # neighbouring tufts are within reach of each other: with contact the head is one group
+    assert touching_groups(bristles) == (tuple(range(len(bristles))),)
+    assert prepare(case).groups == tuple((i,) for i in range(len(bristles)))
+
+
 def test_without_contact_between_bristles_each_bristle_is_its_own_group():
     assert prepare(load_case("tuft")).groups == tuple((i,) for i in range(37))
