@@ -29,11 +29,14 @@ _SINE2_HIGH = math.sin(PARALLEL[1]) ** 2
 # the two radii: filaments of a tuft touch all along at rest, and a kink in the force at
 # zero overlap there kept Newton from converging (docs/tufts.md)
 SOFT_DEPTH = 0.01
-# the side-by-side ends' shares are their overlaps plus this share of the soft depth (equal
-# halves where neither end overlaps); at 0.1, two filaments touching tip to tip with an
-# overlap of 0.05 soft depths put 41 % of the force at the far end of the stretch, where
-# they did not touch (a contact force 5 % above beam theory's); at 1e-4, 0.2 %
-SHARE_FLOOR = 1e-4
+# the side-by-side ends' shares are in proportion to their overlaps, smoothed over this
+# share of the soft depth (_soft_positive): equal halves where both ends barely touch (the
+# filaments of a tuft at rest), none to an end with a gap. An overlap plus a tenth of the
+# soft depth put 41 % of a light tip-to-tip contact at the far end of the stretch, where
+# the filaments did not touch (a contact force 5 % above beam theory's); plus 1e-4 of it
+# fixed that but made the shares of barely touching filaments swing, and a 7-filament tuft
+# took twice the Jacobians (validation/benchmarks/README.md)
+SHARE_SCALE = 0.1
 # a crossing contact near a joint of a chain belongs to whichever of the two segments that
 # meet there is closer to the other bristle, shared smoothly where their distances differ
 # by less than this many soft depths (_owned): counting a contact found at a joint as a half
@@ -124,6 +127,16 @@ def _distance(p0, p1, q0, q1):
                     a * e - b * b)
     dx, dy, dz = rx + s * d1x - t * d2x, ry + s * d1y - t * d2y, rz + s * d1z - t * d2z
     return math.sqrt(dx * dx + dy * dy + dz * dz)
+
+
+@njit(inline="always")
+def _soft_positive(depth, scale):
+    """scale · ln(1 + exp(depth / scale)) [mm]: the depth where it is well above ``scale``,
+    scale · ln 2 at zero, vanishing exponentially into a gap."""
+    ratio = depth / scale
+    if ratio > 30.0:
+        return depth
+    return scale * math.log1p(math.exp(ratio))
 
 
 @njit(inline="always")
@@ -229,8 +242,9 @@ def pair_force(x, v, radius_a, radius_b, inner, far, law, out):
     # proportion to the stretch and to the ends' own overlaps
     side = (1.0 - crossing) * 0.5 * (abs(s2 - s1) + abs(t2 - t1))
     if side > 0.0:
-        depth_low = max(reach - _between(x, s1, t1)[3], 0.0) + SHARE_FLOOR * soft
-        depth_high = max(reach - _between(x, s2, t2)[3], 0.0) + SHARE_FLOOR * soft
+        scale = SHARE_SCALE * soft
+        depth_low = _soft_positive(reach - _between(x, s1, t1)[3], scale)
+        depth_high = _soft_positive(reach - _between(x, s2, t2)[3], scale)
         low_share = depth_low / (depth_low + depth_high)
         share1, share2 = side * low_share, side * (1.0 - low_share)
         fx, fy, fz = _law(law, soft, overlap, nx, ny, nz,
