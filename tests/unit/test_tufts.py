@@ -172,7 +172,7 @@ def test_a_run_with_contact_between_bristles_is_warned_of_its_cost():
     assert prepared.warnings == (
         "contact.between_bristles: 1 system(s), the largest of 37 bristles that can touch, "
         "each solved on one core; contact between bristles is slow (7 touching filaments "
-        "took 136 s per slide period, 5 s without)",)
+        "took 97 s per slide period, 7 s without)",)
 
 
 def test_the_manual_brush_is_40_tufts_of_37_filaments_that_reach_each_other():
