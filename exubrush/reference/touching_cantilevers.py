@@ -157,15 +157,40 @@ def touching_cantilevers(length: float, gap: float, radius: float, bending_stiff
         return result
 
     constraints = [{"type": "ineq", "fun": clearances, "jac": clearance_gradients}]
+    def equilibrium_error(v, force):
+        """Largest clearance violation [mm] and the part of the energy's gradient that the
+        touching clearances' gradients cannot balance, relative to the load's part."""
+        gaps = clearances(v)
+        active = np.nonzero(gaps < 1e-6 * length)[0]
+        grad = gradient(v, force)
+        residual = np.linalg.norm(grad)
+        if len(active):
+            residual = nnls(clearance_gradients(v)[active].T, grad)[1]
+        loading = force * np.linalg.norm(_point_derivatives(v[:n], bars)[-1, :, 0])
+        return max(-gaps.min(), 0.0), residual / loading
+
+    def solve(v, start, end, halvings=0):
+        """The equilibrium at the load ``end`` from ``v``, the one at ``start``: SLSQP,
+        checked by its clearances and its balance (its converged states here balance the
+        load to 2e-4 and stay clear to rounding: 1e-3 and 1e-9 L are the bounds); a step
+        that fails the check is taken in two halves (SLSQP ran into its iteration limit on
+        one machine's rounding and not on another's)."""
+        found = minimize(energy, v, args=(end,), jac=gradient, method="SLSQP",
+                         constraints=constraints, options={"maxiter": 2000, "ftol": 1e-16})
+        violation, unbalanced = equilibrium_error(found.x, end)
+        if violation <= 1e-9 * length and unbalanced <= 1e-3:
+            return found.x
+        if halvings < 4:
+            middle = 0.5 * (start + end)
+            return solve(solve(v, start, middle, halvings + 1), middle, end, halvings + 1)
+        raise RuntimeError(f"touching_cantilevers: no equilibrium at P = {end:g} N "
+                           f"({found.message}; overlap {violation:.2g} mm, unbalanced "
+                           f"{unbalanced:.2g} of the load)")
+
     v = np.zeros(2 * n)
-    for force in load * np.arange(1, load_steps + 1) / load_steps:
-        found = minimize(energy, v, args=(force,), jac=gradient, method="SLSQP",
-                         constraints=constraints,
-                         options={"maxiter": 2000, "ftol": 1e-16})
-        if not found.success:
-            raise RuntimeError(f"touching_cantilevers: no equilibrium at P = {force:g} N "
-                               f"({found.message})")
-        v = found.x
+    steps = load * np.arange(load_steps + 1) / load_steps
+    for start, end in zip(steps[:-1], steps[1:], strict=True):
+        v = solve(v, start, end)
     first, second = _points(v[:n], bars, 0.0), _points(v[n:], bars, second_root)
     # the contact forces: the multipliers of the touching points, from the equilibrium
     # ∇(energy) = Σ λ ∇(clearance) (non-negative least squares)
