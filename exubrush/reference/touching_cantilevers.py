@@ -175,8 +175,12 @@ def touching_cantilevers(length: float, gap: float, radius: float, bending_stiff
         load to 2e-4 and stay clear to rounding: 1e-3 and 1e-9 L are the bounds); a step
         that fails the check is taken in two halves (SLSQP ran into its iteration limit on
         one machine's rounding and not on another's)."""
-        found = minimize(energy, v, args=(end,), jac=gradient, method="SLSQP",
-                         constraints=constraints, options={"maxiter": 2000, "ftol": 1e-16})
+        # the energy in units of the load's linear work, P² L³ / 3EI, so that SLSQP's
+        # absolute precision goal means the same at every load
+        scale = end**2 * length**3 / (3.0 * bending_stiffness)
+        found = minimize(lambda x: energy(x, end) / scale, v, method="SLSQP",
+                         jac=lambda x: gradient(x, end) / scale, constraints=constraints,
+                         options={"maxiter": 2000, "ftol": 3e-15})
         violation, unbalanced = equilibrium_error(found.x, end)
         if violation <= 1e-9 * length and unbalanced <= 1e-3:
             return found.x

@@ -15,7 +15,8 @@ def test_below_the_closing_load_the_second_beam_carries_nothing():
     load = 0.5 * GAP / FLEXIBILITY
     pair = touching_cantilevers(L, GAP, R, EI, load, segments=50)
     np.testing.assert_array_equal(pair.contact_force, 0.0)
-    np.testing.assert_array_equal(pair.second[:, 0], 2 * R + GAP)
+    # upright but for the optimiser's rounding (1e-9 mm against deflections of 0.1 mm)
+    np.testing.assert_allclose(pair.second[:, 0], 2 * R + GAP, rtol=0, atol=1e-9)
     # the first bends as a single cantilever; the chain's midpoint rule errs by O(1/n²)
     assert pair.tips[0, 0] == pytest.approx(load * FLEXIBILITY, rel=1e-3)
 
