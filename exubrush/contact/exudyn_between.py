@@ -125,24 +125,24 @@ class BristleContact:
         self.candidate_corners = (None if diverged else
                                   pair_corners(self.chains, self._pairs(points, reach)))
 
-    def sample(self, mbs) -> None:
-        """Record the contacts of the system's current (converged) state."""
+    def _contacts(self, mbs):
+        """The touching pairs and their corner forces at the system's current state."""
         q, q_t = self._state(mbs)
         points = self.points(q)
-        contacts = contact_forces(self.chains, points, q_t[self.coordinates],
-                                  self._pairs(points), self.law)
+        return contact_forces(self.chains, points, q_t[self.coordinates],
+                              self._pairs(points), self.law)
+
+    def sample(self, mbs) -> None:
+        """Record the contacts of the system's current (converged) state."""
+        contacts = self._contacts(mbs)
         self.counts.append(len(contacts.pairs))
         self.overlaps.append(float(contacts.overlap.max()) if len(contacts.pairs) else 0.0)
-
 
     def resultants(self, mbs) -> np.ndarray:
         """Total contact force [N] on each bristle of the group (bristles, 3) at the
         system's current state."""
-        q, q_t = self._state(mbs)
-        points = self.points(q)
-        contacts = contact_forces(self.chains, points, q_t[self.coordinates],
-                                  self._pairs(points), self.law)
-        owner = np.zeros(len(points), int)
+        contacts = self._contacts(mbs)
+        owner = np.zeros(len(self.base), int)
         owner[self.chains.starts] = self.chains.bristle
         owner[self.chains.ends] = self.chains.bristle
         totals = np.zeros((int(self.chains.bristle.max()) + 1, 3))
