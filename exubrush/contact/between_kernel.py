@@ -109,8 +109,7 @@ def segment_contact(x):
     s_high = _clip01(max(first, second))
     t_low = _clip01((b * s_low + f) / e)
     t_high = _clip01((b * s_high + f) / e)
-    blend = _clip01((sine2 - _SINE2_LOW) / (_SINE2_HIGH - _SINE2_LOW))
-    weight = blend * blend * (3.0 - 2.0 * blend)  # 0 side by side, 1 crossing
+    weight = _smoothstep((sine2 - _SINE2_LOW) / (_SINE2_HIGH - _SINE2_LOW))  # 1 crossing
     return s_closest, t_closest, s_low, t_low, s_high, t_high, weight
 
 
