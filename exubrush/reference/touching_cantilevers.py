@@ -150,24 +150,25 @@ def touching_cantilevers(length: float, gap: float, radius: float, bending_stiff
             rows = slice(pressing * (n + 2), (pressing + 1) * (n + 2))
             own = _point_derivatives(angles[pressing], bars)
             other = _point_derivatives(angles[1 - pressing], bars)
-            k, w, m = segment[rows], u[rows, None, None], normal[rows][:, None, :]
-            moved = (1.0 - w) * other[k] + w * other[k + 1]  # (points, n, 2)
+            index, w, m = segment[rows], u[rows, None, None], normal[rows][:, None, :]
+            moved = (1.0 - w) * other[index] + w * other[index + 1]  # (points, n, 2)
             result[rows, pressing * n:(pressing + 1) * n] = np.sum(own * m, axis=2)
             result[rows, (1 - pressing) * n:(2 - pressing) * n] = -np.sum(moved * m, axis=2)
         return result
 
     constraints = [{"type": "ineq", "fun": clearances, "jac": clearance_gradients}]
-    def equilibrium_error(v, force):
-        """Largest clearance violation [mm] and the part of the energy's gradient that the
-        touching clearances' gradients cannot balance, relative to the load's part."""
+
+    def balance(v, force):
+        """The touching points (indices into geometry's points), their multipliers [N]
+        from the equilibrium ∇(energy) = Σ λ ∇(clearance) (non-negative least squares),
+        the part of ∇(energy) they leave unbalanced, and the largest overlap [mm]."""
         gaps = clearances(v)
         active = np.nonzero(gaps < 1e-6 * length)[0]
         grad = gradient(v, force)
-        residual = np.linalg.norm(grad)
+        multipliers, residual = np.zeros(0), np.linalg.norm(grad)
         if len(active):
-            residual = nnls(clearance_gradients(v)[active].T, grad)[1]
-        loading = force * np.linalg.norm(_point_derivatives(v[:n], bars)[-1, :, 0])
-        return max(-gaps.min(), 0.0), residual / loading
+            multipliers, residual = nnls(clearance_gradients(v)[active].T, grad)
+        return active, multipliers, residual, max(-gaps.min(), 0.0)
 
     def solve(v, start, end, halvings=0):
         """The equilibrium at the load ``end`` from ``v``, the one at ``start``: SLSQP,
@@ -181,7 +182,10 @@ def touching_cantilevers(length: float, gap: float, radius: float, bending_stiff
         found = minimize(lambda x: energy(x, end) / scale, v, method="SLSQP",
                          jac=lambda x: gradient(x, end) / scale, constraints=constraints,
                          options={"maxiter": 2000, "ftol": 3e-15})
-        violation, unbalanced = equilibrium_error(found.x, end)
+        _, _, residual, violation = balance(found.x, end)
+        # relative to the load's part of the energy's gradient
+        unbalanced = residual / (end * np.linalg.norm(_point_derivatives(found.x[:n], bars)
+                                                      [-1, :, 0]))
         if violation <= 1e-9 * length and unbalanced <= 1e-3:
             return found.x
         if halvings < 4:
@@ -196,16 +200,12 @@ def touching_cantilevers(length: float, gap: float, radius: float, bending_stiff
     for start, end in zip(steps[:-1], steps[1:], strict=True):
         v = solve(v, start, end)
     first, second = _points(v[:n], bars, 0.0), _points(v[n:], bars, second_root)
-    # the contact forces: the multipliers of the touching points, from the equilibrium
-    # ∇(energy) = Σ λ ∇(clearance) (non-negative least squares)
+    # the contact forces: the touching points' multipliers along their normals
+    active, multipliers, _, _ = balance(v, load)
     _, points, nearest, _, _ = geometry(v)
-    active = np.nonzero(clearances(v) < 1e-6 * length)[0]
-    total = np.zeros(2)
-    if len(active):
-        multipliers, _ = nnls(clearance_gradients(v)[active].T, gradient(v, load))
-        normal = points[active] - nearest[active]
-        normal /= np.linalg.norm(normal, axis=1)[:, None]
-        # on the second beam: −normal where the first's point presses, +normal where its own
-        sign = np.where(active >= n + 2, 1.0, -1.0)
-        total = (multipliers * sign) @ normal
+    normal = points[active] - nearest[active]
+    normal /= np.linalg.norm(normal, axis=1)[:, None]
+    # on the second beam: −normal where the first's point presses, +normal where its own
+    sign = np.where(active >= n + 2, 1.0, -1.0)
+    total = (multipliers * sign) @ normal
     return TouchingCantilevers(first, second, total)
