@@ -4,7 +4,7 @@ An executor takes a list of :class:`SolveTask` (bristle groups, of one run or of
 of a sweep), runs :func:`exubrush.solve.solve_group` for each wherever it likes, and hands every
 :class:`~exubrush.solve.GroupSolution` back to the caller, in the caller's process, as it
 finishes. It reports progress in simulated seconds and stops cleanly on Ctrl-C or SIGTERM:
-solves in progress return what they have, tasks not started are cancelled. The physics
+solves in progress return what they have, tasks not started return nothing. The physics
 never sees which executor runs it; a distributed engine plugs in as one more
 :class:`Executor`.
 """

@@ -30,13 +30,12 @@ import logging
 import os
 import signal
 import tempfile
-import threading
 import time
 import uuid
 from collections.abc import Iterator
 
 from exubrush.execution import Executor
-from exubrush.execution.signals import signals_redirected
+from exubrush.execution.signals import StopRequest, signals_redirected
 from exubrush.solution import GroupSolution
 
 POLL = 0.2  # s between two looks at the futures and the progress queue
@@ -86,7 +85,7 @@ class DaskExecutor(Executor):
         name = f"exubrush-{uuid.uuid4().hex[:12]}"
         stop_event = Event(f"{name}-stop", client=self.client)
         reports = Queue(f"{name}-progress", client=self.client)
-        stop = threading.Event()
+        stop = StopRequest()
         waiting = collections.deque(enumerate(tasks))
         running: dict = {}  # future -> (task number, task)
 
@@ -104,7 +103,7 @@ class DaskExecutor(Executor):
 
         progress = _Progress(tasks, advance)
         last_look = time.monotonic()
-        with signals_redirected(lambda *_: stop.set()), self.client.as_current():
+        with signals_redirected(stop), self.client.as_current():
             submit_more()
             while running:
                 try:  # back as soon as one finishes

@@ -4,7 +4,7 @@ Exudyn's threads do not mix with Python user functions, so parallel work uses pr
 ("spawn": a fresh interpreter per worker, as on every platform). Ctrl-C, or a SIGTERM sent
 to the whole process group, reaches every worker; the parent decides: workers ignore
 SIGINT and SIGTERM, and an event asks the running solves to stop at their next check and
-return what they have. A worker whose parent died
+return what they have; tasks not started return at once. A worker whose parent died
 (kill -9) exits at once instead of computing on as an orphan.
 """
 
@@ -14,12 +14,11 @@ import multiprocessing
 import os
 import queue
 import signal
-import threading
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from concurrent.futures.process import BrokenProcessPool
 
 from exubrush.execution import Executor
-from exubrush.execution.signals import signals_redirected
+from exubrush.execution.signals import StopRequest, signals_redirected
 from exubrush.solve import solve_group
 
 POLL = 0.2  # s between two looks at the pool and the progress queue
@@ -32,9 +31,9 @@ class SerialExecutor(Executor):
     workers = 1
 
     def run(self, tasks, solved, advance) -> bool:
-        stop = threading.Event()
+        stop = StopRequest()
         monitor = _Monitor(stop, advance)
-        with signals_redirected(lambda *_: stop.set()):
+        with signals_redirected(stop):
             for task in tasks:
                 if stop.is_set():
                     break
@@ -55,7 +54,8 @@ class ProcessExecutor(Executor):
     def run(self, tasks, solved, advance) -> bool:
         context = multiprocessing.get_context("spawn")
         updates, stop = context.Queue(), context.Event()
-        with (signals_redirected(lambda *_: stop.set()),
+        requested = StopRequest()
+        with (signals_redirected(requested),
               ProcessPoolExecutor(min(self.processes, len(tasks)), mp_context=context,
                                   initializer=_init_worker,
                                   initargs=(updates, os.getpid(), stop)) as pool):
@@ -65,23 +65,25 @@ class ProcessExecutor(Executor):
             while pending:
                 done, pending = wait(pending, timeout=POLL, return_when=FIRST_COMPLETED)
                 for future in done:
-                    if future.cancelled():
-                        continue
                     try:
                         result = future.result()
                     except BrokenProcessPool:
-                        if stop.is_set():  # a worker the same SIGTERM reached before it
-                            continue  # could ignore it (still starting): a clean stop
+                        if requested.is_set():  # a worker the same SIGTERM reached before
+                            continue  # it could ignore it (still starting): a clean stop
                         raise
-                    solved(futures[future], result)
+                    if result is not None:
+                        solved(futures[future], result)
                 _drain(updates, advance)
-                if stop.is_set():  # running solves return what they have at their next check
-                    for future in pending:
-                        future.cancel()
+                if requested.is_set() and not stop.is_set():
+                    # running solves return what they have at their next check, the others
+                    # None at once. Not Future.cancel: a worker dying after a cancel (the
+                    # SIGTERM reaching one still starting) makes Python 3.11's pool manager
+                    # thread raise InvalidStateError and the pool hang for ever
+                    stop.set()
         # after the pool has shut down: a worker's last report may reach the queue after
         # its result, and is flushed only when the worker exits
         _drain(updates, advance)
-        return stop.is_set()
+        return requested.is_set()
 
 
 def local_executor(workers: int | None, tasks: int) -> Executor:
@@ -120,7 +122,11 @@ def _init_worker(updates, parent: int, stop) -> None:
 
 
 def _solve_in_worker(prepared, selection):
-    return solve_group(prepared, selection, _WORKER["monitor"])
+    """Solve one group, or return None at once if the run was stopped before it began."""
+    monitor = _WORKER["monitor"]
+    if monitor.stop_requested():
+        return None
+    return solve_group(prepared, selection, monitor)
 
 
 def _drain(updates, advance) -> None:

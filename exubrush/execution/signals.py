@@ -7,6 +7,27 @@ import signal
 import threading
 
 
+class StopRequest:
+    """A signal handler that only raises a flag; the code that stops reads it with
+    :meth:`is_set` and tells others (a worker event) itself.
+
+    A handler runs in the main thread between two bytecodes: inside another handler (a
+    second Ctrl-C, or the two SIGTERMs a process group gets) or while the main thread holds
+    a lock. ``threading.Event.set`` and ``multiprocessing.Event.set`` take a non-reentrant
+    lock, so a handler calling them can wait forever on its own thread; setting an
+    attribute cannot.
+    """
+
+    def __init__(self):
+        self.requested = False
+
+    def __call__(self, *_) -> None:
+        self.requested = True
+
+    def is_set(self) -> bool:
+        return self.requested
+
+
 @contextlib.contextmanager
 def signals_redirected(handler):
     """Handle Ctrl-C and SIGTERM with ``handler`` inside the block (restored after it).
