@@ -84,6 +84,22 @@ def _closest(a, b, c, e, f, denom):
     return s, t
 
 
+@njit(inline="always")
+def _products(p0, p1, q0, q1):
+    """Ericson's (2005, §5.1.9) dot products of the segments p0-p1 and q0-q1 ((3,)
+    arrays): a = d1·d1, b = d1·d2, c = d1·r, e = d2·d2, f = d2·r with d1 = p1 − p0,
+    d2 = q1 − q0, r = p0 − q0; then d1, d2 and r."""
+    d1x, d1y, d1z = p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]
+    d2x, d2y, d2z = q1[0] - q0[0], q1[1] - q0[1], q1[2] - q0[2]
+    rx, ry, rz = p0[0] - q0[0], p0[1] - q0[1], p0[2] - q0[2]
+    a = d1x * d1x + d1y * d1y + d1z * d1z
+    b = d1x * d2x + d1y * d2y + d1z * d2z
+    c = d1x * rx + d1y * ry + d1z * rz
+    e = d2x * d2x + d2y * d2y + d2z * d2z
+    f = d2x * rx + d2y * ry + d2z * rz
+    return a, b, c, e, f, d1x, d1y, d1z, d2x, d2y, d2z, rx, ry, rz
+
+
 @njit(**_JIT)
 def segment_contact(x):
     """Contact parameters of the segments x[0]-x[1] and x[2]-x[3] (x: (4, 3) [mm]).
@@ -92,14 +108,7 @@ def segment_contact(x):
     the stretch the segments share side by side, and the crossing contact's weight (a
     smoothstep in sin² of their angle between PARALLEL[0] and [1]).
     """
-    d1x, d1y, d1z = x[1, 0] - x[0, 0], x[1, 1] - x[0, 1], x[1, 2] - x[0, 2]
-    d2x, d2y, d2z = x[3, 0] - x[2, 0], x[3, 1] - x[2, 1], x[3, 2] - x[2, 2]
-    rx, ry, rz = x[0, 0] - x[2, 0], x[0, 1] - x[2, 1], x[0, 2] - x[2, 2]
-    a = d1x * d1x + d1y * d1y + d1z * d1z
-    e = d2x * d2x + d2y * d2y + d2z * d2z
-    f = d2x * rx + d2y * ry + d2z * rz
-    c = d1x * rx + d1y * ry + d1z * rz
-    b = d1x * d2x + d1y * d2y + d1z * d2z
+    a, b, c, e, f = _products(x[0], x[1], x[2], x[3])[:5]
     denom = a * e - b * b  # |d1|² |d2|² sin² of the angle between them
     sine2 = _clip01(denom / (a * e))
     s_closest, t_closest = _closest(a, b, c, e, f, denom)
@@ -116,14 +125,8 @@ def segment_contact(x):
 @njit(inline="always")
 def _distance(p0, p1, q0, q1):
     """Distance [mm] between the segments p0-p1 and q0-q1 ((3,) arrays)."""
-    d1x, d1y, d1z = p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]
-    d2x, d2y, d2z = q1[0] - q0[0], q1[1] - q0[1], q1[2] - q0[2]
-    rx, ry, rz = p0[0] - q0[0], p0[1] - q0[1], p0[2] - q0[2]
-    a = d1x * d1x + d1y * d1y + d1z * d1z
-    e = d2x * d2x + d2y * d2y + d2z * d2z
-    b = d1x * d2x + d1y * d2y + d1z * d2z
-    s, t = _closest(a, b, d1x * rx + d1y * ry + d1z * rz, e, d2x * rx + d2y * ry + d2z * rz,
-                    a * e - b * b)
+    a, b, c, e, f, d1x, d1y, d1z, d2x, d2y, d2z, rx, ry, rz = _products(p0, p1, q0, q1)
+    s, t = _closest(a, b, c, e, f, a * e - b * b)
     dx, dy, dz = rx + s * d1x - t * d2x, ry + s * d1y - t * d2y, rz + s * d1z - t * d2z
     return math.sqrt(dx * dx + dy * dy + dz * dz)
 
