@@ -27,6 +27,7 @@ from exubrush.kinematics import SLIDE_AXES
 from exubrush.mesh import MeshError, MeshSurface, read_mesh
 from exubrush.models.geometry import BristleGeometry, can_reach, head_bristles, touching_groups
 from exubrush.models.howell import howell_parameters
+from exubrush.models.stiffness import buckling_load
 from exubrush.motion import HeadMotion, TabulatedSlide, head_motion
 from exubrush.parameters.case import Case
 from exubrush.parameters.fields import ParameterError
@@ -115,6 +116,14 @@ class PreparedCase:
         limits = self.force_limits
         return normal_force_bound(limits if selection is None
                                   else [limits[i] for i in selection])
+
+    def newton_force_tolerance(self, selection: tuple[int, ...]) -> float:
+        """Residual [N] below which Newton accepts a step of the bristles ``selection``:
+        ``solver.force_tolerance`` times the smallest Euler buckling load among them
+        (docs/model.md, "Newton's tolerance")."""
+        weakest = min(buckling_load(b.section, b.material.youngs_modulus, b.length)
+                      for b in (self.bristles[i] for i in selection))
+        return self.case.solver.force_tolerance * weakest
 
     @property
     def unreachable(self) -> int:

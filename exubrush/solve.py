@@ -52,7 +52,8 @@ def solve_group(prepared: PreparedCase, selection: tuple[int, ...],
     scene = build_scene(prepared, selection)
     end_time = scene.motion.end_time
     settings = dynamic_settings(case.solver, end_time, case.output.interval,
-                                touching=scene.bristle_contact is not None)
+                                touching=scene.bristle_contact is not None,
+                                force_tolerance=prepared.newton_force_tolerance(selection))
     coordinates_file = None
     if case.output.solution_file:
         handle, coordinates_file = tempfile.mkstemp(prefix="exubrush-", suffix=".txt")

@@ -19,7 +19,7 @@ def quiet(settings: exu.SimulationSettings) -> exu.SimulationSettings:
 
 
 def dynamic_settings(solver: Solver, end_time: float, output_interval: float,
-                     touching: bool = False):
+                     touching: bool = False, force_tolerance: float = 0.0):
     """Implicit generalized-α settings for a brushing run.
 
     Choices (each measured on this problem, validation/benchmarks/README.md): spectral
@@ -42,6 +42,10 @@ def dynamic_settings(solver: Solver, end_time: float, output_interval: float,
     Newton could not pass at any step size). On a 7-filament tuft, approach and 0.1 period,
     the two together: 37-39 s -> 7.6 s (seed 1), 28-74 s -> 19 s (seed 2); each alone
     gained little or nothing (validation/benchmarks/README.md).
+    ``force_tolerance`` [N]: Newton also accepts a step whose residual is below it
+    (:meth:`exubrush.prepared.PreparedCase.newton_force_tolerance`; docs/model.md, "Newton's
+    tolerance"); Exudyn's absolute tolerance is the larger of it and
+    ``solver.absolute_tolerance``.
     """
     settings = quiet(exu.SimulationSettings())
     ti = settings.timeIntegration
@@ -57,7 +61,7 @@ def dynamic_settings(solver: Solver, end_time: float, output_interval: float,
     ti.newton.modifiedNewtonJacUpdatePerStep = touching
     ti.newton.relativeTolerance = (solver.touching_relative_tolerance if touching
                                    else solver.relative_tolerance)
-    ti.newton.absoluteTolerance = solver.absolute_tolerance
+    ti.newton.absoluteTolerance = max(solver.absolute_tolerance, force_tolerance)
     ti.newton.adaptInitialResidual = False
     ti.newton.maxIterations = solver.newton_iterations
     settings.solution.sensors.writePeriod = output_interval

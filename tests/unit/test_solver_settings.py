@@ -1,6 +1,9 @@
 """Solver parameters reach Exudyn's SimulationSettings (exubrush.solver)."""
 
+import math
+
 import exudyn as exu
+import pytest
 
 from exubrush.parameters.case import Solver
 from exubrush.solver import dynamic_settings, fresh_jacobian_after_step_change
@@ -56,3 +59,28 @@ def test_a_new_jacobian_is_asked_for_exactly_when_the_step_size_changes():
         hook(system, end)
         asked.append(system.solverSignalJacobianUpdate)
     assert asked == [False, False, False, True, False, False, True]
+
+
+def test_newton_accepts_a_residual_below_the_force_tolerance_or_the_absolute_one():
+    solver = Solver(absolute_tolerance=1e-10)
+    assert dynamic_settings(solver, 1.0, 0.01, force_tolerance=6e-6) \
+        .timeIntegration.newton.absoluteTolerance == 6e-6
+    # off (0) or below the absolute tolerance: the absolute tolerance stays
+    assert dynamic_settings(solver, 1.0, 0.01).timeIntegration.newton.absoluteTolerance == 1e-10
+    assert dynamic_settings(Solver(absolute_tolerance=1e-4), 1.0, 0.01, force_tolerance=6e-6) \
+        .timeIntegration.newton.absoluteTolerance == 1e-4
+
+
+def test_the_force_tolerance_follows_the_weakest_bristle_of_a_group():
+    from exubrush.parameters.io import load_case
+    from exubrush.prepared import prepare
+
+    case = load_case("orthogonal", ["head.rows=1", "head.columns=2",
+                                    "solver.force_tolerance=1e-3"])
+    prepared = prepare(case)
+    shape, material = case.head.bristle, case.head.material
+    # Euler load of a clamped-free rectangular column, pi^2 E I_min / (4 l^2), I_min = b h^3/12
+    thin = min(shape.width, shape.height)
+    thick = max(shape.width, shape.height)
+    euler = math.pi**2 * material.youngs_modulus * thick * thin**3 / 12 / (4 * shape.length**2)
+    assert prepared.newton_force_tolerance((0, 1)) == pytest.approx(1e-3 * euler, rel=1e-12)

@@ -69,10 +69,11 @@ from exubrush.simulation import simulate
 FLAT_SPEED = 0.8
 HEADS = {"default": [], "small": ["head.rows=2", "head.columns=2"]}
 REFERENCE = ["model.kind='dfm'", "model.segments=24", "solver.step_size='0.25 ms'",
-             "solver.relative_tolerance=1e-8"]
+             "solver.relative_tolerance=1e-8", "solver.force_tolerance=0"]
 # every variant starts from fixed solver settings (the defaults before the presets), so a
 # row means the same thing whatever the case defaults are today
-BASELINE = ["solver.step_size='1 ms'", "solver.relative_tolerance=1e-8"]
+BASELINE = ["solver.step_size='1 ms'", "solver.relative_tolerance=1e-8",
+            "solver.force_tolerance=0"]
 DFM6 = ["model.kind='dfm'", "model.segments=6"]
 LOOSE = ["solver.relative_tolerance=1e-6"]
 BUILTIN = "contact.backend='exudyn-builtin'"
@@ -111,6 +112,13 @@ VARIANTS = {
     **{f"preset fast, built-in contact, coupled, {n} thread{'s' * (n > 1)}": [
         "model.kind='dfm'", *PRESETS["fast"].overrides, BUILTIN, "solver.partition='coupled'",
         f"solver.threads={n}"] for n in (1, 2)},
+    # the presets without the force tolerance of Newton (before 0.7.0), and with it doubled
+    **{f"preset {name}, force tolerance {tolerance}": [
+        "model.kind='dfm'", *PRESETS[name].overrides, f"solver.force_tolerance={tolerance}"]
+       for name in ("fast", "balanced") for tolerance in ("0", "1e-3")},
+    **{f"PRB, preset {name}, force tolerance 0": [
+        *PRESETS[name].overrides, "model.kind='prb'", "solver.force_tolerance=0"]
+       for name in ("fast", "balanced")},
     # the fast preset with the linear solver and Newton limit of before (Exudyn's defaults)
     "preset fast, EXUdense, 25 Newton iterations": [
         "model.kind='dfm'", *PRESETS["fast"].overrides, "solver.linear_solver='EXUdense'",

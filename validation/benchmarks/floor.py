@@ -29,7 +29,8 @@ def floor_group(prepared: PreparedCase, selection: tuple[int, ...]) -> dict:
     for contact in scene.contacts:
         scene.mbs.SetObjectParameter(contact, "activeConnector", False)
     case = prepared.case
-    settings = dynamic_settings(case.solver, scene.motion.end_time, case.output.interval)
+    settings = dynamic_settings(case.solver, scene.motion.end_time, case.output.interval,
+                                force_tolerance=prepared.newton_force_tolerance(selection))
 
     scene.mbs.SetPreStepUserFunction(scene.run_step_hooks)
     start = time.perf_counter()

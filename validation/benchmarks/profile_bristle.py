@@ -37,7 +37,9 @@ def main() -> None:
                                  f"motion.periods={args.periods:g}", *args.overrides])
     prepared = prepare(case)
     scene = build_scene(prepared, (args.bristle,))
-    settings = dynamic_settings(case.solver, scene.motion.end_time, case.output.interval)
+    settings = dynamic_settings(case.solver, scene.motion.end_time, case.output.interval,
+                                force_tolerance=prepared.newton_force_tolerance(
+                                    (args.bristle,)))
     settings.show.computationTime = True  # printed by Exudyn at the end of the solve
     settings.timeIntegration.verboseMode = 1
 
