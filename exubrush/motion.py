@@ -65,6 +65,11 @@ class SineSlide:
         """Slide duration [s]."""
         return self.period * self.periods
 
+    @property
+    def peak_speed(self) -> float:
+        """Largest slide speed, 2π A / T [mm/s]."""
+        return 2.0 * math.pi * self.amplitude / self.period
+
     def evaluate(self, tau: float) -> tuple[float, float, float]:
         """Position [mm], velocity [mm/s] and acceleration [mm/s²] at slide time τ [s]."""
         omega = 2.0 * math.pi / self.period
@@ -101,6 +106,19 @@ class TabulatedSlide:
         """Position [mm], velocity [mm/s] and acceleration [mm/s²] at slide time τ [s]."""
         tau = min(max(tau, 0.0), self.duration)
         return tuple(float(self._spline(tau, k)) for k in range(3))
+
+    @property
+    def peak_speed(self) -> float:
+        """Largest slide speed [mm/s], exact: on each interval the interpolant's speed is a
+        quadratic 3a x² + 2b x + c (x from the interval's start), largest in size at an
+        end or at its vertex x = -b / (3a)."""
+        a, b, c = self._spline.c[:3]
+        width = np.diff(self._spline.x)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            vertex = np.where(a != 0.0, -b / (3.0 * a), 0.0)
+        vertex = np.clip(vertex, 0.0, width)
+        speeds = [3.0 * a * x * x + 2.0 * b * x + c for x in (0.0, width, vertex)]
+        return float(np.max(np.abs(speeds)))
 
     @property
     def digest(self) -> str:
@@ -181,6 +199,12 @@ class HeadMotion:
         s, ds, dds = smooth_step(t / self.approach_duration)
         D, T = self.approach_distance, self.approach_duration
         return D * s, D * ds / T, D * dds / T**2
+
+    def sliding_fast(self, t: float, fraction: float) -> bool:
+        """Whether the head slides at ``fraction`` of its peak speed or faster at time t
+        [s] (never before the slide starts)."""
+        return (t > self.slide_start
+                and abs(self.sliding(t)[1]) >= fraction * self.slide.peak_speed)
 
     def sliding(self, t: float) -> tuple[float, float, float]:
         """Slider position [mm], velocity [mm/s] and acceleration [mm/s²] at time t [s]."""

@@ -118,6 +118,25 @@ def fresh_jacobian_after_step_change():
     return refresh
 
 
+def step_cap(step_size: float, larger_step: float, larger_allowed):
+    """Pre-step hook (mbs, t) that sets Exudyn's largest step: ``larger_step`` [s] where
+    ``larger_allowed(t)`` holds, else ``step_size`` [s].
+
+    Exudyn calls the hook with t at the end of the step it is about to try, whose size is
+    fixed by then: a new cap applies from the next step on. A larger cap lets the step
+    double towards it after ``solver.step_recovery_steps`` good steps; a smaller one takes
+    the step down to it at the next such point (or at the next failed try, which halves
+    it), so ``larger_allowed`` should look ahead by a few large steps.
+    """
+
+    def cap(mbs, t):
+        solver = mbs.sys.get("dynamicSolver")
+        if solver is not None:
+            solver.it.maxStepSize = larger_step if larger_allowed(t) else step_size
+
+    return cap
+
+
 def record_coordinates(settings: exu.SimulationSettings, path: str, period: float) -> None:
     """Let the solver write the ODE2 coordinates (no velocities, accelerations, algebraic or
     data coordinates) to the text solution file ``path`` every ``period`` [s]: the format

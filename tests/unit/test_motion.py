@@ -68,3 +68,31 @@ def test_records_at_step_ends_land_on_the_output_grid():
                                atol=1e-12)
     nodes = np.zeros((5, 2, 3, 3))  # any trailing shape is kept
     assert on_output_grid(times, nodes, 0.01)[1].shape == (5, 2, 3, 3)
+
+
+def test_peak_slide_speed_of_a_sine_and_of_its_samples():
+    sine = SineSlide(15.0, 12.0, 1.0)
+    assert sine.peak_speed == pytest.approx(15 * math.pi / 6, rel=1e-14)
+    # a ramp at 4 mm/s between rests: where it leaves the rest, the cubic from slope 0 at
+    # t = 1 s to 4 at t = 2 s over the secant 4 mm is -4s³ + 8s², speed -12s² + 16s,
+    # largest at s = 2/3: 16/3 mm/s
+    times = np.array([0.0, 1.0, 2.0, 3.0, 4.0, 5.0])
+    ramp = TabulatedSlide(times, np.array([0.0, 0.0, 4.0, 8.0, 12.0, 12.0]))
+    assert ramp.evaluate(2.0)[1] == pytest.approx(4.0, rel=1e-12)
+    assert ramp.peak_speed == pytest.approx(16.0 / 3.0, rel=1e-12)
+    # a sine sampled every 0.1 s: PCHIP's slope differs from the sine's by O(0.1²)
+    dense = np.arange(0.0, 12.0001, 0.1)
+    sampled = TabulatedSlide(dense, 15.0 * np.sin(2 * np.pi * dense / 12.0))
+    assert sampled.peak_speed == pytest.approx(sine.peak_speed, rel=1e-2)
+
+
+def test_the_head_slides_fast_only_in_the_middle_of_a_stroke():
+    motion = HeadMotion(1.5, 1.0, 0.2, SineSlide(15.0, 12.0, 2.0))
+    start = motion.slide_start
+    assert not motion.sliding_fast(0.5, 0.5)  # approaching
+    assert not motion.sliding_fast(start, 0.5)  # at rest before the slide
+    assert motion.sliding_fast(start + 0.01, 0.5)  # a sine slide starts at its peak speed
+    assert not motion.sliding_fast(start + 3.0, 0.5)  # the reversal
+    # |cos| >= 1/2 from the reversal's point of view: within T/6 = 2 s of a speed peak
+    assert motion.sliding_fast(start + 6.0 + 1.99, 0.5)
+    assert not motion.sliding_fast(start + 6.0 + 2.01, 0.5)

@@ -1,12 +1,13 @@
 """Solver parameters reach Exudyn's SimulationSettings (exubrush.solver)."""
 
 import math
+from types import SimpleNamespace
 
 import exudyn as exu
 import pytest
 
 from exubrush.parameters.case import Solver
-from exubrush.solver import dynamic_settings, fresh_jacobian_after_step_change
+from exubrush.solver import dynamic_settings, fresh_jacobian_after_step_change, step_cap
 
 
 def test_threads_and_linear_solver_reach_exudyn():
@@ -84,3 +85,17 @@ def test_the_force_tolerance_follows_the_weakest_bristle_of_a_group():
     thick = max(shape.width, shape.height)
     euler = math.pi**2 * material.youngs_modulus * thick * thin**3 / 12 / (4 * shape.length**2)
     assert prepared.newton_force_tolerance((0, 1)) == pytest.approx(1e-3 * euler, rel=1e-12)
+
+
+def test_the_step_cap_follows_the_condition_once_the_solver_exists():
+
+    hook = step_cap(2e-3, 5e-3, lambda t: 1.0 <= t < 2.0)
+    iteration = SimpleNamespace(maxStepSize=2e-3)
+    system = SimpleNamespace(sys={})
+    hook(system, 1.5)  # before Exudyn stored its solver: nothing to set, no error
+    system.sys["dynamicSolver"] = SimpleNamespace(it=iteration)
+    caps = []
+    for t in (0.5, 1.0, 1.5, 2.0):
+        hook(system, t)
+        caps.append(iteration.maxStepSize)
+    assert caps == [2e-3, 5e-3, 5e-3, 2e-3]

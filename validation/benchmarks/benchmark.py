@@ -69,11 +69,12 @@ from exubrush.simulation import simulate
 FLAT_SPEED = 0.8
 HEADS = {"default": [], "small": ["head.rows=2", "head.columns=2"]}
 REFERENCE = ["model.kind='dfm'", "model.segments=24", "solver.step_size='0.25 ms'",
-             "solver.relative_tolerance=1e-8", "solver.force_tolerance=0"]
+             "solver.relative_tolerance=1e-8", "solver.force_tolerance=0",
+             "solver.sliding_step_factor=1"]
 # every variant starts from fixed solver settings (the defaults before the presets), so a
 # row means the same thing whatever the case defaults are today
 BASELINE = ["solver.step_size='1 ms'", "solver.relative_tolerance=1e-8",
-            "solver.force_tolerance=0"]
+            "solver.force_tolerance=0", "solver.sliding_step_factor=1"]
 DFM6 = ["model.kind='dfm'", "model.segments=6"]
 LOOSE = ["solver.relative_tolerance=1e-6"]
 BUILTIN = "contact.backend='exudyn-builtin'"
@@ -116,6 +117,10 @@ VARIANTS = {
     **{f"preset {name}, force tolerance {tolerance}": [
         "model.kind='dfm'", *PRESETS[name].overrides, f"solver.force_tolerance={tolerance}"]
        for name in ("fast", "balanced") for tolerance in ("0", "1e-3")},
+    # the presets with the step held at solver.step_size through the strokes (before 0.7.0)
+    **{f"preset {name}, sliding factor {factor}": [
+        "model.kind='dfm'", *PRESETS[name].overrides, f"solver.sliding_step_factor={factor}"]
+       for name in ("fast", "balanced") for factor in ("1", "2", "5")},
     **{f"PRB, preset {name}, force tolerance 0": [
         *PRESETS[name].overrides, "model.kind='prb'", "solver.force_tolerance=0"]
        for name in ("fast", "balanced")},
