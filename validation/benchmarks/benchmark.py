@@ -121,6 +121,13 @@ VARIANTS = {
     **{f"preset {name}, sliding factor {factor}": [
         "model.kind='dfm'", *PRESETS[name].overrides, f"solver.sliding_step_factor={factor}"]
        for name in ("fast", "balanced") for factor in ("1", "2", "5")},
+    # the presets as 0.6.0 ran them: no force tolerance, the step held through the strokes
+    **{f"preset {name}, 0.6.0 settings": [
+        "model.kind='dfm'", *PRESETS[name].overrides, "solver.force_tolerance=0",
+        "solver.sliding_step_factor=1"] for name in ("fast", "balanced")},
+    **{f"PRB, preset {name}, 0.6.0 settings": [
+        *PRESETS[name].overrides, "model.kind='prb'", "solver.force_tolerance=0",
+        "solver.sliding_step_factor=1"] for name in ("fast", "balanced")},
     **{f"PRB, preset {name}, force tolerance 0": [
         *PRESETS[name].overrides, "model.kind='prb'", "solver.force_tolerance=0"]
        for name in ("fast", "balanced")},
