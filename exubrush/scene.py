@@ -45,10 +45,6 @@ if TYPE_CHECKING:
 HANDLE_SIZE = (20.0, 8.0, 3.0)  # mm
 HANDLE_DENSITY = 1.2e-9  # t/mm³ (acrylic-like)
 BUILTIN_FORCE_SIGN = 1.0
-# the middle of a stroke, where the step may grow (solver.sliding_step_factor): on one
-# bristle, 0.15-0.5 of the peak speed all kept the flat-zone forces within 0.03 % of the
-# 2 ms run's later strokes (validation/benchmarks/README.md, "Sixth session")
-SLIDING_SPEED_FRACTION = 0.5
 # surfaces on which the middle of a stroke is steady sliding; on a tooth row (or a mesh,
 # which may be one) tips snap off edges into gaps there, so the step stays step_size
 SMOOTH_SURFACES = ("plane", "cylinder", "sphere")
@@ -331,7 +327,8 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
     if (scene.bristle_contact is None and case.surface.kind in SMOOTH_SURFACES
             and sliding_step > case.solver.step_size):
         scene.step_hooks.append(_sliding_step_cap(scene.motion, case.solver.step_size,
-                                                  sliding_step))
+                                                  sliding_step,
+                                                  case.solver.sliding_speed_fraction))
     mbs.Assemble()
     if scene.bristle_contact is not None:
         from exubrush.contact.exudyn_between import locate_in_system
@@ -340,17 +337,17 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
     return scene
 
 
-def _sliding_step_cap(motion: HeadMotion, step_size: float, sliding_step: float):
+def _sliding_step_cap(motion: HeadMotion, step_size: float, sliding_step: float,
+                      fraction: float):
     """Step hook letting the step grow from ``step_size`` to ``sliding_step`` [s] while the
-    head slides at :data:`SLIDING_SPEED_FRACTION` of its peak speed or faster, now and two
-    large steps ahead (docs/model.md, "Steps in the middle of a stroke"). Only on
-    :data:`SMOOTH_SURFACES`, and not for groups of bristles that touch each other: their
-    broad phase is sized for ``step_size``."""
+    head slides at ``fraction`` of its peak speed or faster, now and two large steps ahead
+    (docs/model.md, "Steps in the middle of a stroke"). Only on :data:`SMOOTH_SURFACES`,
+    and not for groups of bristles that touch each other: their broad phase is sized for
+    ``step_size``."""
     ahead = 2.0 * sliding_step
 
     def fast(t):
-        return (motion.sliding_fast(t, SLIDING_SPEED_FRACTION)
-                and motion.sliding_fast(t + ahead, SLIDING_SPEED_FRACTION))
+        return motion.sliding_fast(t, fraction) and motion.sliding_fast(t + ahead, fraction)
 
     return step_cap(step_size, sliding_step, fast)
 

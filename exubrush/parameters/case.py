@@ -445,10 +445,14 @@ class Solver(Parameters):
     step_size: float = param(2e-3, "largest time step (the step is cut where Newton fails)",
                              "s", "ms", above=0.0)
     sliding_step_factor: float = param(
-        5.0, "while the head slides at half its peak speed or faster over a plane, cylinder "
-             "or sphere, the step may grow to this multiple of step_size, at most "
-             "output.interval (1: step_size throughout; docs/model.md, 'Steps in the middle "
-             "of a stroke')", minimum=1.0, below=100.0,
+        5.0, "while the head slides at sliding_speed_fraction of its peak speed or faster "
+             "over a plane, cylinder or sphere, the step may grow to this multiple of "
+             "step_size, at most output.interval (1: step_size throughout; docs/model.md, "
+             "'Steps in the middle of a stroke')", minimum=1.0, below=100.0,
+    )
+    sliding_speed_fraction: float = param(
+        0.3, "the head slides 'in the middle of a stroke' (sliding_step_factor) at this "
+             "fraction of its peak speed or faster", above=0.0, below=1.0,
     )
     minimum_step_size: float = param(1e-9, "smallest step of the automatic step reduction",
                                      "s", above=0.0)

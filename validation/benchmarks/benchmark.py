@@ -121,6 +121,9 @@ VARIANTS = {
     **{f"preset {name}, sliding factor {factor}": [
         "model.kind='dfm'", *PRESETS[name].overrides, f"solver.sliding_step_factor={factor}"]
        for name in ("fast", "balanced") for factor in ("1", "2", "5")},
+    **{f"preset balanced, larger steps above {fraction} of the peak speed": [
+        "model.kind='dfm'", *PRESETS["balanced"].overrides,
+        f"solver.sliding_speed_fraction={fraction}"] for fraction in ("0.3", "0.2")},
     # the presets as 0.6.0 ran them: no force tolerance, the step held through the strokes
     **{f"preset {name}, 0.6.0 settings": [
         "model.kind='dfm'", *PRESETS[name].overrides, "solver.force_tolerance=0",
