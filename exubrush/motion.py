@@ -200,11 +200,10 @@ class HeadMotion:
         D, T = self.approach_distance, self.approach_duration
         return D * s, D * ds / T, D * dds / T**2
 
-    def sliding_fast(self, t: float, fraction: float) -> bool:
-        """Whether the head slides at ``fraction`` of its peak speed or faster at time t
-        [s] (never before the slide starts)."""
-        return (t > self.slide_start
-                and abs(self.sliding(t)[1]) >= fraction * self.slide.peak_speed)
+    def sliding_faster_than(self, t: float, speed: float) -> bool:
+        """Whether the head slides at ``speed`` [mm/s] or faster at time t [s] (never
+        before the slide starts)."""
+        return t > self.slide_start and abs(self.sliding(t)[1]) >= speed
 
     def sliding(self, t: float) -> tuple[float, float, float]:
         """Slider position [mm], velocity [mm/s] and acceleration [mm/s²] at time t [s]."""

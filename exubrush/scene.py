@@ -48,6 +48,10 @@ BUILTIN_FORCE_SIGN = 1.0
 # surfaces on which the middle of a stroke is steady sliding; on a tooth row (or a mesh,
 # which may be one) tips snap off edges into gaps there, so the step stays step_size
 SMOOTH_SURFACES = ("plane", "cylinder", "sphere")
+# the larger steps also need the slide at this multiple of the tip law's v_d or faster:
+# where the tips' slip enters the Stribeck band (below v_d) Newton's trouble starts; the
+# default fraction 0.3 of the paper's 7.85 mm/s is 1.57 v_d
+STRIBECK_MARGIN = 1.5
 
 
 @dataclass
@@ -326,9 +330,11 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
                        case.output.interval)
     if (scene.bristle_contact is None and case.surface.kind in SMOOTH_SURFACES
             and sliding_step > case.solver.step_size):
+        # above the friction law's Stribeck band with a margin, whatever the peak speed
+        speed = max(case.solver.sliding_speed_fraction * scene.motion.slide.peak_speed,
+                    STRIBECK_MARGIN * case.contact.dynamic_velocity)
         scene.step_hooks.append(_sliding_step_cap(scene.motion, case.solver.step_size,
-                                                  sliding_step,
-                                                  case.solver.sliding_speed_fraction))
+                                                  sliding_step, speed))
     mbs.Assemble()
     if scene.bristle_contact is not None:
         from exubrush.contact.exudyn_between import locate_in_system
@@ -338,16 +344,17 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
 
 
 def _sliding_step_cap(motion: HeadMotion, step_size: float, sliding_step: float,
-                      fraction: float):
+                      speed: float):
     """Step hook letting the step grow from ``step_size`` to ``sliding_step`` [s] while the
-    head slides at ``fraction`` of its peak speed or faster, now and two large steps ahead
+    head slides at ``speed`` [mm/s] or faster, now and two large steps ahead
     (docs/model.md, "Steps in the middle of a stroke"). Only on :data:`SMOOTH_SURFACES`,
     and not for groups of bristles that touch each other: their broad phase is sized for
     ``step_size``."""
     ahead = 2.0 * sliding_step
 
     def fast(t):
-        return motion.sliding_fast(t, fraction) and motion.sliding_fast(t + ahead, fraction)
+        return (motion.sliding_faster_than(t, speed)
+                and motion.sliding_faster_than(t + ahead, speed))
 
     return step_cap(step_size, sliding_step, fast)
 

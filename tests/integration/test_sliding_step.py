@@ -50,3 +50,14 @@ def test_the_step_grows_only_over_smooth_surfaces(overrides, capped):
     held = build_scene(prepare(load_case("orthogonal", [
         *ONE_BRISTLE, *overrides, "solver.sliding_step_factor=1"])), (0,))
     assert len(scene.step_hooks) == len(held.step_hooks) + capped
+
+
+def test_a_slide_slower_than_the_stribeck_margin_keeps_the_step():
+    # peak speed 2π·3 mm / 12 s = 1.57 mm/s: below 1.5 v_d = 2.25 mm/s everywhere, so the
+    # tips' slip is never clear of the Stribeck band and the step stays step_size
+    slow = ["motion.amplitude='3 mm'"]
+    steps = [simulate(load_case("orthogonal", [*ONE_BRISTLE, *slow,
+                                               f"solver.sliding_step_factor={factor}"]),
+                      progress=False, workers=1).metadata["solver_statistics"]["steps"]
+             for factor in (1, 5)]
+    assert steps[0] == steps[1]

@@ -86,13 +86,13 @@ def test_peak_slide_speed_of_a_sine_and_of_its_samples():
     assert sampled.peak_speed == pytest.approx(sine.peak_speed, rel=1e-2)
 
 
-def test_the_head_slides_fast_only_in_the_middle_of_a_stroke():
+def test_the_head_slides_faster_than_a_speed_only_in_the_middle_of_a_stroke():
     motion = HeadMotion(1.5, 1.0, 0.2, SineSlide(15.0, 12.0, 2.0))
-    start = motion.slide_start
-    assert not motion.sliding_fast(0.5, 0.5)  # approaching
-    assert not motion.sliding_fast(start, 0.5)  # at rest before the slide
-    assert motion.sliding_fast(start + 0.01, 0.5)  # a sine slide starts at its peak speed
-    assert not motion.sliding_fast(start + 3.0, 0.5)  # the reversal
-    # |cos| >= 1/2 from the reversal's point of view: within T/6 = 2 s of a speed peak
-    assert motion.sliding_fast(start + 6.0 + 1.99, 0.5)
-    assert not motion.sliding_fast(start + 6.0 + 2.01, 0.5)
+    start, half = motion.slide_start, 0.5 * motion.slide.peak_speed
+    assert not motion.sliding_faster_than(0.5, half)  # approaching
+    assert not motion.sliding_faster_than(start, half)  # at rest before the slide
+    assert motion.sliding_faster_than(start + 0.01, half)  # a sine starts at its peak speed
+    assert not motion.sliding_faster_than(start + 3.0, half)  # the reversal
+    # |cos| >= 1/2 within T/6 = 2 s of a speed peak
+    assert motion.sliding_faster_than(start + 6.0 + 1.99, half)
+    assert not motion.sliding_faster_than(start + 6.0 + 2.01, half)
