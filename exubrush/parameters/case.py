@@ -452,7 +452,8 @@ class Solver(Parameters):
     )
     sliding_speed_fraction: float = param(
         0.3, "the head slides 'in the middle of a stroke' (sliding_step_factor) at this "
-             "fraction of its peak speed or faster", above=0.0, below=1.0,
+             "fraction of its peak speed or faster, and at 1.5 contact.dynamic_velocity or "
+             "faster", above=0.0, below=1.0,
     )
     minimum_step_size: float = param(1e-9, "smallest step of the automatic step reduction",
                                      "s", above=0.0)
