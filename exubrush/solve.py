@@ -19,7 +19,7 @@ import numpy as np
 
 from exubrush.prepared import PreparedCase
 from exubrush.sanity import beyond_bound_message
-from exubrush.scene import build_scene, force_on_tip
+from exubrush.scene import Scene, build_scene, force_on_tip
 from exubrush.solution import INTERRUPTED, GroupSolution, SolverStatistics
 from exubrush.solution_files import read_coordinate_file
 from exubrush.solver import dynamic_settings, record_coordinates
@@ -38,6 +38,17 @@ class SolveMonitor(Protocol):
         """Whether the solve should end now and return what it has (Ctrl-C, cancellation)."""
 
 
+def group_settings(prepared: PreparedCase, scene: Scene, selection: tuple[int, ...]):
+    """Exudyn's settings for stepping ``scene``, the system of the bristles ``selection``
+    of ``prepared``: its case's solver, to the motion's end, a touching group's settings
+    where its bristles touch each other, and Newton's force tolerance of its weakest
+    bristle."""
+    case = prepared.case
+    return dynamic_settings(case.solver, scene.motion.end_time, case.output.interval,
+                            touching=scene.bristle_contact is not None,
+                            force_tolerance=prepared.newton_force_tolerance(selection))
+
+
 def solve_group(prepared: PreparedCase, selection: tuple[int, ...],
                 monitor: SolveMonitor | None = None) -> GroupSolution:
     """Solve the bristles ``selection`` of ``prepared`` as one Exudyn system.
@@ -51,9 +62,7 @@ def solve_group(prepared: PreparedCase, selection: tuple[int, ...],
     case = prepared.case
     scene = build_scene(prepared, selection)
     end_time = scene.motion.end_time
-    settings = dynamic_settings(case.solver, end_time, case.output.interval,
-                                touching=scene.bristle_contact is not None,
-                                force_tolerance=prepared.newton_force_tolerance(selection))
+    settings = group_settings(prepared, scene, selection)
     coordinates_file = None
     if case.output.solution_file:
         handle, coordinates_file = tempfile.mkstemp(prefix="exubrush-", suffix=".txt")

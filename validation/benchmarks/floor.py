@@ -19,8 +19,7 @@ from concurrent.futures import ProcessPoolExecutor
 from exubrush.parameters.case import Case
 from exubrush.prepared import PreparedCase, prepare
 from exubrush.scene import build_scene
-from exubrush.solve import solver_statistics
-from exubrush.solver import dynamic_settings
+from exubrush.solve import group_settings, solver_statistics
 
 
 def floor_group(prepared: PreparedCase, selection: tuple[int, ...]) -> dict:
@@ -28,9 +27,7 @@ def floor_group(prepared: PreparedCase, selection: tuple[int, ...]) -> dict:
     scene = build_scene(prepared, selection)
     for contact in scene.contacts:
         scene.mbs.SetObjectParameter(contact, "activeConnector", False)
-    case = prepared.case
-    settings = dynamic_settings(case.solver, scene.motion.end_time, case.output.interval,
-                                force_tolerance=prepared.newton_force_tolerance(selection))
+    settings = group_settings(prepared, scene, selection)
 
     scene.mbs.SetPreStepUserFunction(scene.run_step_hooks)
     start = time.perf_counter()

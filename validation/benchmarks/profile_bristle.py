@@ -20,8 +20,7 @@ os.environ["EXUBRUSH_EXUDYN_CHECKS"] = "1"  # before exubrush chooses Exudyn's c
 from exubrush.parameters.io import load_case  # noqa: E402
 from exubrush.prepared import prepare  # noqa: E402
 from exubrush.scene import build_scene  # noqa: E402
-from exubrush.solve import solver_statistics  # noqa: E402
-from exubrush.solver import dynamic_settings  # noqa: E402
+from exubrush.solve import group_settings, solver_statistics  # noqa: E402
 
 
 def main() -> None:
@@ -37,9 +36,7 @@ def main() -> None:
                                  f"motion.periods={args.periods:g}", *args.overrides])
     prepared = prepare(case)
     scene = build_scene(prepared, (args.bristle,))
-    settings = dynamic_settings(case.solver, scene.motion.end_time, case.output.interval,
-                                force_tolerance=prepared.newton_force_tolerance(
-                                    (args.bristle,)))
+    settings = group_settings(prepared, scene, (args.bristle,))
     settings.show.computationTime = True  # printed by Exudyn at the end of the solve
     settings.timeIntegration.verboseMode = 1
 
