@@ -11,8 +11,8 @@ from exubrush.simulation import simulate
 ONE_BRISTLE = ["head.rows=1", "head.columns=1", "motion.periods=0.25"]
 
 
-def _run(factor):
-    results = simulate(load_case("orthogonal", [*ONE_BRISTLE,
+def _run(factor, *overrides):
+    results = simulate(load_case("orthogonal", [*ONE_BRISTLE, *overrides,
                                                 f"solver.sliding_step_factor={factor}"]),
                        progress=False, workers=1)
     assert results.metadata["status"] == "completed", results.metadata["message"]
@@ -55,9 +55,6 @@ def test_the_step_grows_only_over_smooth_surfaces(overrides, capped):
 def test_a_slide_slower_than_the_stribeck_margin_keeps_the_step():
     # peak speed 2π·3 mm / 12 s = 1.57 mm/s: below 1.5 v_d = 2.25 mm/s everywhere, so the
     # tips' slip is never clear of the Stribeck band and the step stays step_size
-    slow = ["motion.amplitude='3 mm'"]
-    steps = [simulate(load_case("orthogonal", [*ONE_BRISTLE, *slow,
-                                               f"solver.sliding_step_factor={factor}"]),
-                      progress=False, workers=1).metadata["solver_statistics"]["steps"]
+    steps = [_run(factor, "motion.amplitude='3 mm'").metadata["solver_statistics"]["steps"]
              for factor in (1, 5)]
     assert steps[0] == steps[1]

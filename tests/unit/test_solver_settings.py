@@ -7,6 +7,8 @@ import exudyn as exu
 import pytest
 
 from exubrush.parameters.case import Solver
+from exubrush.parameters.io import load_case
+from exubrush.prepared import prepare
 from exubrush.solver import dynamic_settings, fresh_jacobian_after_step_change, step_cap
 
 
@@ -73,9 +75,6 @@ def test_newton_accepts_a_residual_below_the_force_tolerance_or_the_absolute_one
 
 
 def test_the_force_tolerance_follows_the_weakest_bristle_of_a_group():
-    from exubrush.parameters.io import load_case
-    from exubrush.prepared import prepare
-
     case = load_case("orthogonal", ["head.rows=1", "head.columns=2",
                                     "solver.force_tolerance=1e-3"])
     prepared = prepare(case)
@@ -88,7 +87,6 @@ def test_the_force_tolerance_follows_the_weakest_bristle_of_a_group():
 
 
 def test_the_step_cap_follows_the_condition_once_the_solver_exists():
-
     hook = step_cap(2e-3, 5e-3, lambda t: 1.0 <= t < 2.0)
     iteration = SimpleNamespace(maxStepSize=2e-3)
     system = SimpleNamespace(sys={})
