@@ -44,6 +44,7 @@ MALFORMED = [
     ("set", ["solver.minimum_step_size='1 s'"], "minimum_step_size must not exceed step_size"),
     ("set", ["solver.threads=0"], "solver.threads: 0 must be >= 1"),
     ("set", ["solver.force_tolerance=-1"], "solver.force_tolerance: -1 must be >= 0"),
+    ("set", ["solver.force_tolerance=0.5"], "solver.force_tolerance: 0.5 must be < 0.01"),
     ("set", ["solver.sliding_step_factor=0.5"], "solver.sliding_step_factor: 0.5 must be >= 1"),
     ("set", ["solver.sliding_speed_fraction=1.5"],
      "solver.sliding_speed_fraction: 1.5 must be < 1"),
