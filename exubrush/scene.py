@@ -22,9 +22,10 @@ from exubrush.contact.exudyn_contact import (
     add_tip_contact,
     builtin_friction_blend,
     contact_user_function,
+    lagged_drop_hook,
     surface_marker,
 )
-from exubrush.contact.laws import builtin_contact_parameters
+from exubrush.contact.laws import builtin_contact_parameters, drop_can_lag
 from exubrush.mesh import frame_with_normal
 from exubrush.models.assembly import rigid_marker
 from exubrush.models.dfm import add_dfm_bristle
@@ -73,6 +74,8 @@ class Scene:
     keep_alive: list = field(default_factory=list)
     # (tip node, marker of its tangent plane) of each tip on a mesh surface
     tangent_planes: list = field(default_factory=list)
+    # (connector, tip radius) of the tip contacts that read a lagged friction drop
+    lagged_contacts: list = field(default_factory=list)
     ground: int = 0
     # callables (mbs, t) that the solve must call before every step
     step_hooks: list = field(default_factory=list)
@@ -194,11 +197,23 @@ def _add_contact(scene: Scene, prepared: PreparedCase, surface_marker_number, ti
         # far below until the first step puts it on the tangent plane
         surface_marker_number = rigid_marker(scene.mbs, scene.ground, [0.0, 0.0, -1e3])
         scene.tangent_planes.append((tip_node, surface_marker_number))
+    lagged = lags_friction_drop(case)
     key = (bristle.tip_radius, law_surface is None)
     if key not in laws:
         laws[key] = contact_user_function(
-            scene.mbs, case.contact, bristle.tip_radius, window, law_surface)
-    return add_tip_contact(scene.mbs, surface_marker_number, tip_body, laws[key])
+            scene.mbs, case.contact, bristle.tip_radius, window, law_surface, lagged)
+    contact = add_tip_contact(scene.mbs, surface_marker_number, tip_body, laws[key], lagged)
+    if lagged:
+        scene.lagged_contacts.append((contact, bristle.tip_radius))
+    return contact
+
+
+def lags_friction_drop(case) -> bool:
+    """Whether the tip contacts take the friction's drop one step behind
+    (``solver.friction_drop = "lagged"``): with the paper's law as a user function, and only
+    where the law's friction falls (μ_s > μ_d)."""
+    return (case.solver.friction_drop == "lagged" and case.contact.backend != "exudyn-builtin"
+            and drop_can_lag(case.contact))
 
 
 def _contact_force_output(case):
@@ -309,6 +324,10 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
     if scene.tangent_planes:
         scene.step_hooks.append(_tangent_plane_refresh(prepared.mesh, case.surface,
                                                        scene.tangent_planes))
+    if scene.lagged_contacts:  # after the tangent planes: it reads the contacts' frames
+        scene.step_hooks.append(lagged_drop_hook(
+            scene.lagged_contacts, case.contact,
+            None if case.surface.kind in ("plane", "mesh") else case.surface))
     window = prepared.friction_window
     if case.contact.backend == "exudyn-builtin" and window is not None and scene.contacts:
         scene.step_hooks.append(

@@ -26,7 +26,12 @@ import exudyn as exu
 import exudyn.itemInterface as eii
 from exudyn.advancedUtilities import CreateSymbolicUserFunction
 
-from exubrush.contact.laws import cubic_step, sphere_plane_force, sphere_surface_force
+from exubrush.contact.laws import (
+    cubic_step,
+    drop_ratios,
+    sphere_plane_force,
+    sphere_surface_force,
+)
 from exubrush.float_math import FLOAT_MATH
 from exubrush.models.assembly import rigid_marker
 from exubrush.parameters.case import ContactLaw, Surface
@@ -54,11 +59,14 @@ SYMBOLIC_MATH = SimpleNamespace(
 """The math back end (exubrush.float_math) that records Exudyn symbolic expressions."""
 
 CONNECTOR_TYPE = "ObjectConnectorRigidBodySpringDamper"
+# the connector's offset vector, which carries the lagged drop ratios (one per feature)
+OFFSET_SIZE = 6
 USER_FUNCTION_NAME = "springForceTorqueUserFunction"
 
 
 def contact_user_function(
-    mbs, law: ContactLaw, radius: float, friction_window=None, surface: Surface | None = None
+    mbs, law: ContactLaw, radius: float, friction_window=None, surface: Surface | None = None,
+    lagged: bool = False,
 ):
     """Return an Exudyn spring-force-torque user function for one sphere radius and
     ``surface`` (default: the plane).
@@ -72,6 +80,10 @@ def contact_user_function(
     friction_window : (float, float), optional
         Times [s] between which friction is blended in (cubic step from 0 to 1); ``None``
         means friction acts from the start.
+    lagged : bool
+        Read the friction's drop ratio of each surface feature from the connector's
+        ``offset`` (set before every step by :func:`lagged_drop_hook`) instead of
+        evaluating it at the current slip.
     """
     backend = law.backend
     if backend not in ("paper-symbolic", "paper-python"):
@@ -86,11 +98,12 @@ def contact_user_function(
             scale = cubic_step(t, friction_window[0], 0.0, friction_window[1], 1.0, math_backend)
         if surface is None or surface.kind == "plane":
             load = sphere_plane_force(law, radius, displacement, velocity, angularVelocity,
-                                      math_backend, scale)
+                                      math_backend, scale, offset[0] if lagged else None)
         else:
-            load = sphere_surface_force(
-                law, radius, features(surface, displacement, radius, math_backend),
-                velocity, angularVelocity, math_backend, scale)
+            found = features(surface, displacement, radius, math_backend)
+            drops = [offset[k] for k in range(len(found))] if lagged else None
+            load = sphere_surface_force(law, radius, found, velocity, angularVelocity,
+                                        math_backend, scale, drops)
         return [-component for component in load]
 
     if backend == "paper-python":
@@ -108,18 +121,50 @@ def surface_marker(mbs, ground, surface: Surface | None):
     return rigid_marker(mbs, ground, [surface.x, surface.y, 0.0], orientation(surface))
 
 
-def add_tip_contact(mbs, surface_marker_number, tip_body, user_function):
+def add_tip_contact(mbs, surface_marker_number, tip_body, user_function, lagged=False):
     """Connect the tip body's node (sphere centre) to the surface through ``user_function``;
-    the connector's frame is that of the surface marker."""
+    the connector's frame is that of the surface marker. ``lagged``: the user function
+    reads drop ratios from the connector's offset, which start at 1 (no drop: the tip at
+    rest)."""
     tip_marker = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=tip_body, localPosition=[0, 0, 0]))
     return mbs.AddObject(
         eii.ObjectConnectorRigidBodySpringDamper(
             markerNumbers=[surface_marker_number, tip_marker],
             useIntrinsicFormulation=False,
             springForceTorqueUserFunction=user_function,
+            offset=[1.0] * OFFSET_SIZE if lagged else [0.0] * OFFSET_SIZE,
             visualization=eii.VObjectConnectorRigidBodySpringDamper(show=False),
         )
     )
+
+
+def lagged_drop_hook(contacts: list, law: ContactLaw, surface: Surface | None):
+    """A step hook ``(mbs, t)`` that puts into each tip contact's offset the drop ratios
+    (exubrush.contact.laws.drop_ratios) at the state the step starts from.
+
+    ``contacts``: (connector, tip radius [mm]) of tip contacts made with ``lagged=True``;
+    ``surface``: the law's surface (None: the plane law, also in a mesh's tangent frame,
+    so a mesh's frame must be placed before this hook runs). Exudyn calls the pre-step
+    function before every step attempt, after a failed attempt with the state reset to the
+    step's start; the connector's local displacement, velocity and angular velocity are
+    the user function's arguments (tests/integration/test_lagged_drop.py). The offset is
+    only written when a ratio changes (it stays at 1 or μ_d/μ_s through a stick or a
+    slide).
+    """
+    outputs = (exu.OutputVariableType.DisplacementLocal, exu.OutputVariableType.VelocityLocal,
+               exu.OutputVariableType.AngularVelocityLocal)
+    last = [None] * len(contacts)
+
+    def set_drops(mbs, t):
+        for k, (contact, radius) in enumerate(contacts):
+            centre, velocity, omega = (mbs.GetObjectOutput(contact, o) for o in outputs)
+            ratios = drop_ratios(law, radius, surface, centre, velocity, omega)
+            if ratios != last[k]:
+                last[k] = ratios
+                padded = ratios + [1.0] * (OFFSET_SIZE - len(ratios))
+                mbs.SetObjectParameter(contact, "offset", padded)
+
+    return set_drops
 
 
 def add_builtin_tip_contact(mbs, plane_marker, tip_body, radius: float, parameters: dict):

@@ -17,17 +17,24 @@ cubic step that runs from -μ_s at -v_s to +μ_s at +v_s (so μ grows linearly f
 slope 1.5 μ_s / v_s, as in the step-function friction of common multibody codes), then a
 cubic step from μ_s at v_s to μ_d at v_d, and μ_d above. Value and slope are continuous.
 No stiction state: the law is regularised.
+
+Where μ_s > 0 the coefficient is a product μ(v) = μ_rise(v) · r(v): the rise from 0 to μ_s
+(constant μ_s above v_s) and the drop ratio from 1 to μ_d / μ_s between v_s and v_d
+(:func:`friction_rise`, :func:`friction_drop`). The force functions take the drop ratio
+as a number where a time step evaluates it at the slip speed of the step's start
+(``drop``; ``solver.friction_drop = "lagged"``, docs/model.md).
 """
 
 from __future__ import annotations
 
+import math
 from typing import TYPE_CHECKING
 
 from exubrush.float_math import FLOAT_MATH
-from exubrush.surfaces import Choice
+from exubrush.surfaces import Choice, features, resolve
 
 if TYPE_CHECKING:  # the laws read the parameters' attributes only: no import at run time
-    from exubrush.parameters.case import ContactLaw
+    from exubrush.parameters.case import ContactLaw, Surface
 
 
 def cubic_step(x, x0, h0, x1, h1, m=FLOAT_MATH):
@@ -63,7 +70,26 @@ def friction_coefficient(law: ContactLaw, slip_speed, m=FLOAT_MATH):
     return m.IfThenElse(slip_speed < law.static_velocity, to_static, to_dynamic)
 
 
-def friction_per_speed(law: ContactLaw, slip_square, m=FLOAT_MATH):
+def friction_rise(law: ContactLaw, slip_speed, m=FLOAT_MATH):
+    """μ_rise(v): the odd cubic step from 0 at v = 0 to μ_s at v_s, μ_s above [-]."""
+    return cubic_step(slip_speed, -law.static_velocity, -law.static_friction,
+                      law.static_velocity, law.static_friction, m)
+
+
+def friction_drop(law: ContactLaw, slip_speed, m=FLOAT_MATH):
+    """r(v) = μ(v) / μ_rise(v): 1 up to v_s, a cubic step to μ_d / μ_s at v_d, μ_d / μ_s
+    above [-] (needs μ_s > 0)."""
+    return cubic_step(slip_speed, law.static_velocity, 1.0, law.dynamic_velocity,
+                      law.dynamic_friction / law.static_friction, m)
+
+
+def drop_can_lag(law: ContactLaw) -> bool:
+    """Whether the law's friction falls from μ_s to μ_d (μ_s > μ_d): only then has
+    :func:`friction_drop` anything to lag (with μ_d >= μ_s, μ(v) never falls)."""
+    return law.static_friction > law.dynamic_friction
+
+
+def friction_per_speed(law: ContactLaw, slip_square, m=FLOAT_MATH, drop=None):
     """μ(v) / v [s/mm] as a function of v² = |v_t|² [mm²/s²]: :func:`friction_coefficient`
     over the slip speed, written so that Exudyn's expression tree uses its argument as few
     times as possible (it evaluates a subexpression again at every use).
@@ -71,19 +97,29 @@ def friction_per_speed(law: ContactLaw, slip_square, m=FLOAT_MATH):
     Below v_s the odd cubic step is μ_s (3/2 ξ − 1/2 ξ³), ξ = v / v_s, so μ/v =
     μ_s / v_s (3/2 − 1/2 v²/v_s²): no square root, and finite at v = 0 (the viscous-like
     limit 1.5 μ_s / v_s). Above, the cubic step to μ_d is μ_s + (μ_d − μ_s) η²(3 − 2η),
-    η = min((v − v_s)/(v_d − v_s), 1).
+    η = min((v − v_s)/(v_d − v_s), 1). With ``drop`` (the drop ratio r, a number), the
+    coefficient is μ_rise(v) · r: μ_s r / v above v_s.
     """
     vs, vd = law.static_velocity, law.dynamic_velocity
     mu_s, mu_d = law.static_friction, law.dynamic_friction
     creeping = mu_s / vs * (1.5 - 0.5 / (vs * vs) * slip_square)
     speed = m.sqrt(m.max(slip_square, vs * vs))
+    if drop is not None:
+        return drop * m.IfThenElse(slip_square < vs * vs, creeping, mu_s / speed)
     eta = m.min((speed - vs) / (vd - vs), 1.0)
     sliding = (mu_s + (mu_d - mu_s) * m.square(eta) * (3.0 - 2.0 * eta)) / speed
     return m.IfThenElse(slip_square < vs * vs, creeping, sliding)
 
 
+def plane_slip(radius: float, velocity, omega):
+    """Slip (x, y) [mm/s] of a sphere of ``radius`` [mm] on the plane z = 0: the velocity
+    of its material point at the contact point, v + ω × (−r e_z)."""
+    return velocity[0] - radius * omega[1], velocity[1] + radius * omega[0]
+
+
 def sphere_plane_force(
-    law: ContactLaw, radius: float, centre, velocity, omega, m=FLOAT_MATH, friction_scale=1.0
+    law: ContactLaw, radius: float, centre, velocity, omega, m=FLOAT_MATH, friction_scale=1.0,
+    drop=None,
 ):
     """Force and moment of a plane z = 0 (normal +z) on a sphere.
 
@@ -97,6 +133,9 @@ def sphere_plane_force(
     friction_scale : float or expression
         Factor on the friction force (1 = the law as it is; used to switch friction on
         smoothly after the approach).
+    drop : float or expression, optional
+        The drop ratio r to use instead of r(v) (:func:`friction_drop`); None: the law's
+        own μ(v).
 
     Returns
     -------
@@ -106,22 +145,39 @@ def sphere_plane_force(
         is (-r e_z) × F_t = (r F_ty, -r F_tx, 0).
     """
     penetration = radius - centre[2]
-    # velocity of the material point of the sphere at the contact point: v + ω × (-r e_z)
-    slip_x = velocity[0] - radius * omega[1]
-    slip_y = velocity[1] + radius * omega[0]
+    slip_x, slip_y = plane_slip(radius, velocity, omega)
     force_n = normal_force(law, penetration, -velocity[2], m)
     slip_speed = m.sqrt(slip_x * slip_x + slip_y * slip_y + 1e-12)
     # μ(v)/v -> 1.5 μ_s / v_s as v -> 0, so the force is a smooth viscous-like function of
     # slip; the 1e-12 mm²/s² floor only keeps the division defined at exactly zero slip.
-    scale = -friction_scale * friction_coefficient(law, slip_speed, m) * force_n / slip_speed
+    mu = (friction_coefficient(law, slip_speed, m) if drop is None
+          else friction_rise(law, slip_speed, m) * drop)
+    scale = -friction_scale * mu * force_n / slip_speed
     force_tx = scale * slip_x
     force_ty = scale * slip_y
     return [force_tx, force_ty, force_n, radius * force_ty, -radius * force_tx, 0.0]
 
 
+def feature_slip(radius: float, normal, velocity, omega):
+    """Normal speed v·n [mm/s] of a sphere's centre and slip (3 components) [mm/s] of its
+    material point at the contact point −r n: v_c = v + ω × (−r n) less its normal part
+    ((ω × n)·n = 0, so the contact point's normal speed is the centre's)."""
+    nx, ny, nz = normal
+    contact_velocity = (
+        _sum(velocity[0], _product(-radius, _difference(_product(omega[1], nz),
+                                                        _product(omega[2], ny)))),
+        _sum(velocity[1], _product(-radius, _difference(_product(omega[2], nx),
+                                                        _product(omega[0], nz)))),
+        _sum(velocity[2], _product(-radius, _difference(_product(omega[0], ny),
+                                                        _product(omega[1], nx)))),
+    )
+    normal_speed = _sum(*(_product(velocity[i], normal[i]) for i in range(3)))
+    return normal_speed, _tangential(contact_velocity, normal, normal_speed)
+
+
 def sphere_feature_force(
     law: ContactLaw, radius: float, normal, distance, velocity, omega, m=FLOAT_MATH,
-    friction_scale=1.0,
+    friction_scale=1.0, drop=None,
 ):
     """Force and moment of one convex surface feature on a sphere (exubrush.surfaces).
 
@@ -133,7 +189,8 @@ def sphere_feature_force(
     along n: F = F_n n + F_t, moment (−r n) × F_t about the centre. The surface is at rest.
 
     A normal given as plain numbers (a flat face) drops the terms it multiplies by zero, so
-    that Exudyn's expression tree of a face costs about as much as the plane's.
+    that Exudyn's expression tree of a face costs about as much as the plane's. ``drop``:
+    as in :func:`sphere_plane_force`.
 
     Returns
     -------
@@ -142,21 +199,10 @@ def sphere_feature_force(
         ``normal``, ``velocity`` and ``omega``.
     """
     nx, ny, nz = normal
-    # v_c = v + ω × (−r n)
-    contact_velocity = (
-        _sum(velocity[0], _product(-radius, _difference(_product(omega[1], nz),
-                                                        _product(omega[2], ny)))),
-        _sum(velocity[1], _product(-radius, _difference(_product(omega[2], nx),
-                                                        _product(omega[0], nz)))),
-        _sum(velocity[2], _product(-radius, _difference(_product(omega[0], ny),
-                                                        _product(omega[1], nx)))),
-    )
-    # (ω × n)·n = 0: the contact point's normal speed is the centre's
-    normal_speed = _sum(*(_product(velocity[i], normal[i]) for i in range(3)))
-    slip = _tangential(contact_velocity, normal, normal_speed)
+    normal_speed, slip = feature_slip(radius, normal, velocity, omega)
     force_n = normal_force(law, radius - distance, -normal_speed, m)
     slip_square = _sum(*(0.0 if _is_number(c) and c == 0.0 else m.square(c) for c in slip))
-    scale = -friction_scale * force_n * friction_per_speed(law, slip_square, m)
+    scale = -friction_scale * force_n * friction_per_speed(law, slip_square, m, drop)
     force = [_sum(_product(force_n, normal[i]), _product(scale, slip[i])) for i in range(3)]
     # (−r n) × F_t, F_t = scale · slip
     arm = -radius * scale
@@ -169,27 +215,46 @@ def sphere_feature_force(
 
 def sphere_surface_force(
     law: ContactLaw, radius: float, surface_features, velocity, omega, m=FLOAT_MATH,
-    friction_scale=1.0,
+    friction_scale=1.0, drops=None,
 ):
     """The sum of :func:`sphere_feature_force` over ``surface_features``
     (exubrush.surfaces.features): every feature the sphere penetrates acts on it. A
     feature's load is only evaluated where the sphere reaches it (d < r), a Choice's only
-    in the region the point is in (Exudyn's IfThenElse evaluates one branch)."""
+    in the region the point is in (Exudyn's IfThenElse evaluates one branch). ``drops``:
+    one drop ratio per feature (:func:`sphere_plane_force`'s ``drop``), or None."""
 
-    def load(feature):
+    def load(feature, drop):
         if isinstance(feature, Choice):
-            yes, no = load(feature.if_true), load(feature.if_false)
+            yes, no = load(feature.if_true, drop), load(feature.if_false, drop)
             return [m.IfThenElse(feature.condition, a, b) for a, b in zip(yes, no, strict=True)]
         pushed = sphere_feature_force(law, radius, feature.normal, feature.distance, velocity,
-                                      omega, m, friction_scale)
+                                      omega, m, friction_scale, drop)
         touching = feature.distance < radius
         return [m.IfThenElse(touching, component, 0.0) for component in pushed]
 
     total = None
-    for feature in surface_features:
-        part = load(feature)
+    for index, feature in enumerate(surface_features):
+        part = load(feature, None if drops is None else drops[index])
         total = part if total is None else [a + b for a, b in zip(total, part, strict=True)]
     return total
+
+
+def drop_ratios(law: ContactLaw, radius: float, surface: Surface | None, centre, velocity,
+                omega) -> list[float]:
+    """The drop ratio r(v) (:func:`friction_drop`) at the slip of each feature of
+    ``surface`` (None: the plane z = 0) that a sphere of ``radius`` [mm] at ``centre``
+    [mm], moving with ``velocity`` [mm/s] and ``omega`` [rad/s] (surface frame), sees: the
+    numbers the force functions take as ``drop`` / ``drops`` when a step lags the drop.
+    The slip is the force law's own (:func:`plane_slip`, :func:`feature_slip`), whether
+    the sphere touches or not."""
+    if surface is None or surface.kind == "plane":
+        slip_x, slip_y = plane_slip(radius, velocity, omega)
+        return [friction_drop(law, math.sqrt(slip_x * slip_x + slip_y * slip_y + 1e-12))]
+    ratios = []
+    for feature in features(surface, centre, radius):
+        _, slip = feature_slip(radius, resolve(feature).normal, velocity, omega)
+        ratios.append(friction_drop(law, math.sqrt(sum(c * c for c in slip))))
+    return ratios
 
 
 def _is_number(value) -> bool:

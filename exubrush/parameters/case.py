@@ -455,6 +455,14 @@ class Solver(Parameters):
              "fraction of its peak speed or faster, and at 1.5 contact.dynamic_velocity or "
              "faster", above=0.0, below=1.0,
     )
+    friction_drop: str = param(
+        "lagged",
+        "how a step takes the friction law's fall from mu_s to mu_d: lagged = at the slip "
+        "speed of the step's start, the rise to mu_s within Newton; implicit = all within "
+        "Newton (Newton fails where the falling friction outweighs a small tip's inertia; "
+        "docs/model.md, 'The friction drop, one step behind')",
+        "text", choices=("lagged", "implicit"),
+    )
     minimum_step_size: float = param(1e-9, "smallest step of the automatic step reduction",
                                      "s", above=0.0)
     spectral_radius: float = param(

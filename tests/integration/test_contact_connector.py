@@ -12,10 +12,13 @@ from exubrush.contact.exudyn_contact import (
     add_tip_contact,
     builtin_friction_blend,
     contact_user_function,
+    lagged_drop_hook,
     surface_marker,
 )
 from exubrush.contact.laws import (
     builtin_contact_parameters,
+    drop_ratios,
+    friction_drop,
     sphere_plane_force,
     sphere_surface_force,
 )
@@ -168,21 +171,28 @@ PLACED = [  # (surface, centre of a sphere touching it [mm], head frame)
 ]
 
 
-def _applied_load(surface, backend, centre, velocity, omega):
+def _applied_load(surface, backend, centre, velocity, omega, lagged=False):
     """Force and moment [N, N·mm] that the contact applies to a free sphere of mass 1 t and
-    inertia 1 t·mm², head frame, read as its accelerations after one 1 ns step."""
+    inertia 1 t·mm², head frame, read as its accelerations after one 1 ns step; with
+    ``lagged``, also the drop ratios the step hook put into the connector's offset."""
     SC, mbs, body, _ = _sphere_above_plane(list(centre), list(velocity), list(omega),
                                            RigidBodyInertia(1.0, np.eye(3)))
     ground = mbs.AddObject(eii.ObjectGround())
-    function = contact_user_function(mbs, LAW.replace(backend=backend), RADIUS,
-                                     surface=surface)
-    add_tip_contact(mbs, surface_marker(mbs, ground, surface), body["bodyNumber"], function)
+    law = LAW.replace(backend=backend)
+    law_surface = None if surface.kind == "plane" else surface
+    function = contact_user_function(mbs, law, RADIUS, surface=law_surface, lagged=lagged)
+    contact = add_tip_contact(mbs, surface_marker(mbs, ground, surface), body["bodyNumber"],
+                              function, lagged)
+    if lagged:
+        hook = lagged_drop_hook([(contact, RADIUS)], law, law_surface)
+        mbs.SetPreStepUserFunction(lambda mbs, t: hook(mbs, t) or True)
     _solve(mbs, end_time=1e-9, steps=1)
     node = body["nodeNumber"]
-    return np.concatenate([
+    load = np.concatenate([
         mbs.GetNodeOutput(node, exu.OutputVariableType.Acceleration),
         mbs.GetNodeOutput(node, exu.OutputVariableType.AngularAcceleration),
     ])
+    return (load, list(mbs.GetObjectParameter(contact, "offset"))) if lagged else load
 
 
 @pytest.mark.parametrize("backend", ["paper-symbolic", "paper-python"])
@@ -216,3 +226,44 @@ def test_a_sphere_pressed_on_a_turned_cylinder_sinks_by_the_laws_depth():
     # Newton's tolerance leaves ~1e-13 of δ; a wrong normal or placement misses by > 1e-3
     assert depth == pytest.approx((0.1 / LAW.stiffness) ** (1 / LAW.stiffness_exponent),
                                   rel=1e-9)
+
+
+@pytest.mark.parametrize("backend", ["paper-symbolic", "paper-python"])
+@pytest.mark.parametrize("placed", [(Surface(yaw=np.radians(40.0)), [0.3, -0.2, 0.37]),
+                                    *PLACED],
+                         ids=["plane", "cylinder", "sphere", "tooth-edge", "narrow-gap"])
+def test_lagged_drop_reads_the_slip_the_law_sees(placed, backend):
+    # the step hook reads the connector's local state: the ratios it sets are those of the
+    # state turned into the surface frame by hand, and a step that starts there pushes as
+    # the implicit law (the lag is zero at the step's start); slip speeds of 0.8-1.6 mm/s
+    # put some features inside the Stribeck band
+    surface, centre = placed
+    velocity, omega = np.array([0.9, -0.6, -0.3]), np.array([0.2, -0.1, 0.4])
+    turn = orientation(surface)
+    local = (to_surface_frame(surface, centre), turn.T @ velocity, turn.T @ omega)
+    law_surface = None if surface.kind == "plane" else surface
+    expected_ratios = drop_ratios(LAW, RADIUS, law_surface, *(v.tolist() for v in local))
+    load, offset = _applied_load(surface, backend, centre, velocity, omega, lagged=True)
+    np.testing.assert_allclose(offset[:len(expected_ratios)], expected_ratios, rtol=1e-12)
+    assert offset[len(expected_ratios):] == [1.0] * (6 - len(expected_ratios))
+    if surface.kind == "plane":
+        implicit = sphere_plane_force(LAW, RADIUS, *(v.tolist() for v in local))
+    else:
+        implicit = sphere_surface_force(LAW, RADIUS, features(surface, local[0], RADIUS),
+                                        local[1].tolist(), local[2].tolist())
+    expected = np.concatenate([turn @ implicit[:3], turn @ implicit[3:]])
+    np.testing.assert_allclose(load, expected, rtol=1e-6, atol=1e-9)
+
+
+def test_a_lagged_contact_uses_the_ratio_it_was_given():
+    # the user function takes the drop ratio from the offset, not from the current slip:
+    # at full slip (r(5 mm/s) = μ_d/μ_s) a given r = 1 pushes with μ_s
+    function = contact_user_function(None, LAW.replace(backend="paper-python"), RADIUS,
+                                     lagged=True)
+    state = dict(displacement=[0, 0, 0.38], rotation=[0, 0, 0], velocity=[5.0, 0, 0],
+                 angularVelocity=[0, 0, 0], stiffness=0, damping=0, rotJ0=0, rotJ1=0)
+    held = function(None, 1.0, 0, offset=[1.0] * 6, **state)
+    dropped = function(None, 1.0, 0, offset=[friction_drop(LAW, 5.0)] + [1.0] * 5, **state)
+    # (the connector's load is minus the law's, normal and friction alike)
+    assert held[0] == pytest.approx(-LAW.static_friction * held[2], rel=1e-12)
+    assert dropped[0] == pytest.approx(-LAW.dynamic_friction * dropped[2], rel=1e-12)

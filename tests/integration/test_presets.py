@@ -15,7 +15,7 @@ from exubrush.simulation import simulate
 SMALL_HEAD = ["head.rows=1", "head.columns=2", "motion.periods=1"]
 REFERENCE = ["model.segments=24", "solver.step_size='0.25 ms'",
              "solver.relative_tolerance=1e-8", "solver.force_tolerance=0",
-             "solver.sliding_step_factor=1"]
+             "solver.sliding_step_factor=1", "solver.friction_drop='implicit'"]
 
 
 # the preset checks need a DFM N = 24 reference and a run per preset: slow tier

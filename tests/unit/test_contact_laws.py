@@ -7,15 +7,20 @@ import pytest
 
 from exubrush.contact.laws import (
     builtin_contact_parameters,
+    drop_can_lag,
+    drop_ratios,
+    feature_slip,
     friction_coefficient,
+    friction_drop,
     friction_per_speed,
+    friction_rise,
     normal_force,
     sphere_feature_force,
     sphere_plane_force,
     sphere_surface_force,
 )
-from exubrush.parameters.case import ContactLaw
-from exubrush.surfaces import Choice, Feature
+from exubrush.parameters.case import ContactLaw, Surface
+from exubrush.surfaces import Choice, Feature, features, resolve
 
 LAW = ContactLaw()  # paper table 2
 
@@ -210,3 +215,69 @@ def test_a_diverged_state_gives_loads_not_an_exception():
     assert len(load) == 6 and all(isinstance(c, float) for c in load)
     far = features(Surface(kind="tooth-row"), (3.2, 0.0, 1e200), 0.4)
     assert far  # no OverflowError from the geometry either
+
+
+SPEEDS = [0.0, 1e-7, 0.3, 1.19999, 1.2, 1.2001, 1.35, 1.4999, 1.5, 1.6, 40.0]
+
+
+@pytest.mark.parametrize("speed", SPEEDS)
+def test_coefficient_is_the_rise_times_the_drop(speed):
+    # μ(v) = μ_rise(v) r(v) for the paper's law and for a steeper drop
+    steep = LAW.replace(static_friction=0.9, dynamic_friction=0.3, dynamic_velocity=2.0)
+    for law in (LAW, steep):
+        assert friction_rise(law, speed) * friction_drop(law, speed) == pytest.approx(
+            friction_coefficient(law, speed), rel=1e-14, abs=1e-300)
+
+
+def test_rise_is_monotone_and_drop_runs_from_one_to_the_dynamic_ratio():
+    # the part left inside Newton must never fall (a falling μ makes the step's equations
+    # non-monotone in the slip): sampled densely across the Stribeck band
+    speeds = np.linspace(0.0, 3.0, 3001)
+    rise = np.array([friction_rise(LAW, v) for v in speeds])
+    assert np.all(np.diff(rise) >= 0.0)
+    assert friction_drop(LAW, 1.2) == 1.0 and friction_drop(LAW, 0.0) == 1.0
+    assert friction_drop(LAW, 1.5) == pytest.approx(0.76 / 0.8, rel=1e-15)
+    assert friction_drop(LAW, 9.0) == pytest.approx(0.76 / 0.8, rel=1e-15)
+
+
+def test_only_a_falling_friction_can_lag():
+    assert drop_can_lag(LAW)
+    assert not drop_can_lag(LAW.replace(static_friction=0.76))  # flat: nothing falls
+    assert not drop_can_lag(LAW.replace(static_friction=0.0))  # rising from zero
+
+
+@pytest.mark.parametrize("speed", SPEEDS)
+def test_forces_with_the_drop_at_the_current_slip_are_the_laws(speed):
+    # a lagged step that happens to lag by nothing reproduces the implicit law: the
+    # plane, a turned face and friction_per_speed
+    slip = (0.6 * speed, -0.8 * speed)
+    velocity, omega = [slip[0], slip[1], -0.5], [0.0, 0.0, 0.0]
+    drop = drop_ratios(LAW, 0.4, None, [0.0, 0.0, 0.37], velocity, omega)
+    assert len(drop) == 1
+    np.testing.assert_allclose(
+        sphere_plane_force(LAW, 0.4, [0.0, 0.0, 0.37], velocity, omega, drop=drop[0]),
+        sphere_plane_force(LAW, 0.4, [0.0, 0.0, 0.37], velocity, omega), rtol=1e-12,
+        atol=1e-18)
+    assert friction_per_speed(LAW, speed**2, drop=friction_drop(LAW, speed)) == pytest.approx(
+        friction_per_speed(LAW, speed**2), rel=1e-12)
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_drop_ratios_follow_each_features_own_slip(seed):
+    # on a tooth row a sphere near an edge sees up to three features, each with its own
+    # normal: the ratio of each is r at that feature's slip, and the surface law given
+    # them equals the implicit law
+    rng = np.random.default_rng(seed)
+    row = Surface(kind="tooth-row")
+    centre = [rng.uniform(-2.0, 2.0), 0.0, rng.uniform(-0.5, 0.5)]
+    velocity = rng.normal(scale=1.3, size=3).tolist()
+    omega = rng.normal(scale=2.0, size=3).tolist()
+    found = features(row, centre, 0.4)
+    ratios = drop_ratios(LAW, 0.4, row, centre, velocity, omega)
+    assert len(ratios) == len(found)
+    for feature, ratio in zip(found, ratios, strict=True):
+        _, slip = feature_slip(0.4, resolve(feature).normal, velocity, omega)
+        assert ratio == friction_drop(LAW, math.sqrt(sum(c * c for c in slip)))
+    np.testing.assert_allclose(
+        sphere_surface_force(LAW, 0.4, found, velocity, omega, drops=ratios),
+        sphere_surface_force(LAW, 0.4, found, velocity, omega), rtol=1e-12, atol=1e-18)

@@ -70,11 +70,13 @@ FLAT_SPEED = 0.8
 HEADS = {"default": [], "small": ["head.rows=2", "head.columns=2"]}
 REFERENCE = ["model.kind='dfm'", "model.segments=24", "solver.step_size='0.25 ms'",
              "solver.relative_tolerance=1e-8", "solver.force_tolerance=0",
-             "solver.sliding_step_factor=1"]
+             "solver.sliding_step_factor=1", "solver.friction_drop='implicit'"]
 # every variant starts from fixed solver settings (the defaults before the presets), so a
 # row means the same thing whatever the case defaults are today
 BASELINE = ["solver.step_size='1 ms'", "solver.relative_tolerance=1e-8",
-            "solver.force_tolerance=0", "solver.sliding_step_factor=1"]
+            "solver.force_tolerance=0", "solver.sliding_step_factor=1",
+            "solver.friction_drop='implicit'"]
+IMPLICIT_DROP = "solver.friction_drop='implicit'"
 DFM6 = ["model.kind='dfm'", "model.segments=6"]
 LOOSE = ["solver.relative_tolerance=1e-6"]
 BUILTIN = "contact.backend='exudyn-builtin'"
@@ -127,10 +129,15 @@ VARIANTS = {
     # the presets as 0.6.0 ran them: no force tolerance, the step held through the strokes
     **{f"preset {name}, 0.6.0 settings": [
         "model.kind='dfm'", *PRESETS[name].overrides, "solver.force_tolerance=0",
-        "solver.sliding_step_factor=1"] for name in ("fast", "balanced")},
+        "solver.sliding_step_factor=1", IMPLICIT_DROP] for name in ("fast", "balanced")},
     **{f"PRB, preset {name}, 0.6.0 settings": [
         *PRESETS[name].overrides, "model.kind='prb'", "solver.force_tolerance=0",
-        "solver.sliding_step_factor=1"] for name in ("fast", "balanced")},
+        "solver.sliding_step_factor=1", IMPLICIT_DROP] for name in ("fast", "balanced")},
+    # the presets as 0.7.0 ran them: the friction's drop within Newton
+    **{f"preset {name}, 0.7.0 settings": [
+        "model.kind='dfm'", *PRESETS[name].overrides, IMPLICIT_DROP] for name in PRESETS},
+    **{f"PRB, preset {name}, 0.7.0 settings": [
+        *PRESETS[name].overrides, "model.kind='prb'", IMPLICIT_DROP] for name in PRESETS},
     **{f"PRB, preset {name}, force tolerance 0": [
         *PRESETS[name].overrides, "model.kind='prb'", "solver.force_tolerance=0"]
        for name in ("fast", "balanced")},
