@@ -246,7 +246,7 @@ def drop_ratios(law: ContactLaw, radius: float, surface: Surface | None, centre,
     [mm], moving with ``velocity`` [mm/s] and ``omega`` [rad/s] (surface frame), sees: the
     numbers the force functions take as ``drop`` / ``drops`` when a step lags the drop.
     The slip is the force law's own (:func:`plane_slip`, :func:`feature_slip`), whether
-    the sphere touches or not."""
+    the sphere touches or not; on the plane it does not depend on ``centre``."""
     if surface is None or surface.kind == "plane":
         slip_x, slip_y = plane_slip(radius, velocity, omega)
         return [friction_drop(law, math.sqrt(slip_x * slip_x + slip_y * slip_y + 1e-12))]
