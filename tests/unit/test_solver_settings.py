@@ -97,3 +97,29 @@ def test_the_step_cap_follows_the_condition_once_the_solver_exists():
         hook(system, t)
         caps.append(iteration.maxStepSize)
     assert caps == [2e-3, 5e-3, 5e-3, 2e-3]
+
+
+
+# the benchmark harness starts every variant from fixed older settings (its BASELINE) and
+# applies a preset on top: a preset must set each of them, or its rows measure the old one
+OLDER_SETTINGS = ["solver.step_size='1 ms'", "solver.relative_tolerance=1e-8",
+                  "solver.force_tolerance=0", "solver.sliding_step_factor=1",
+                  "solver.friction_drop='implicit'", "model.segments=8"]
+
+
+@pytest.mark.parametrize("name", ["fast", "balanced", "accurate"])
+def test_a_preset_sets_every_setting_it_stands_for(name):
+    from exubrush.presets import preset_overrides
+
+    over_older = load_case("orthogonal", [*OLDER_SETTINGS, *preset_overrides(name)])
+    alone = load_case("orthogonal", preset_overrides(name))
+    assert over_older.solver == alone.solver and over_older.model == alone.model
+
+
+@pytest.mark.parametrize("case_name", ["orthogonal", "parallel", "tuft", "interdental"])
+def test_the_balanced_preset_is_the_case_defaults(case_name):
+    from exubrush.presets import preset_overrides
+
+    default = load_case(case_name)
+    balanced = load_case(case_name, preset_overrides("balanced"))
+    assert balanced.solver == default.solver and balanced.model == default.model
