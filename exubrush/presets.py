@@ -30,7 +30,7 @@ PRESETS = {
         # relaxes slower than at 2 ms (F_n -5.3 %, F_t -4.9 %); without the force tolerance
         # both bristles were off (-10 % and +15 %) and their sum by -0.7 % only
         0.06, "DFM N = 6, 5 ms steps (10 ms in the middle of strokes), Newton rtol 1e-6, "
-        "force tolerance 5e-4 (flat zone of the default head: "
+        "force tolerance 5e-4, friction drop lagged (flat zone of the default head: "
         "-1.0 % in the first whole stroke, +0.05 % later; up to -5.3 % in the first stroke "
         "of a 1 x 2 head)",
     ),
@@ -39,14 +39,14 @@ PRESETS = {
          "solver.force_tolerance=5e-4", "solver.sliding_step_factor=5",
          "solver.friction_drop='lagged'"),
         0.01, "DFM N = 6, 2 ms steps (10 ms in the middle of strokes), Newton rtol 1e-6, "
-        "force tolerance 5e-4 (the case defaults)",
+        "force tolerance 5e-4, friction drop lagged (the case defaults)",
     ),
     "accurate": Preset(
         ("model.segments=12", "solver.step_size='2 ms'", "solver.relative_tolerance=1e-6",
          "solver.force_tolerance=5e-4", "solver.sliding_step_factor=5",
          "solver.friction_drop='lagged'"),
         0.01, "DFM N = 12, 2 ms steps (10 ms in the middle of strokes), Newton rtol 1e-6, "
-        "force tolerance 5e-4",
+        "force tolerance 5e-4, friction drop lagged",
     ),
 }
 
