@@ -147,7 +147,7 @@ def lagged_drop_hook(contacts: list, law: ContactLaw, surface: Surface | None):
     so a mesh's frame must be placed before this hook runs). Exudyn calls the pre-step
     function before every step attempt, after a failed attempt with the state reset to the
     step's start; the connector's local displacement, velocity and angular velocity are
-    the user function's arguments (tests/integration/test_lagged_drop.py). The offset is
+    the user function's arguments (tests/integration/test_contact_connector.py). The offset is
     only written when a ratio changes (it stays at 1 or μ_d/μ_s through a stick or a
     slide).
     """
