@@ -55,6 +55,7 @@ def dynamic_settings(solver: Solver, end_time: float, output_interval: float,
     ti.automaticStepSize = True
     ti.adaptiveStep = True
     ti.adaptiveStepRecoverySteps = solver.step_recovery_steps
+    ti.adaptiveStepDecrease = solver.step_cut
     ti.generalizedAlpha.spectralRadius = solver.spectral_radius
     ti.generalizedAlpha.computeInitialAccelerations = True
     ti.newton.useModifiedNewton = solver.modified_newton

@@ -463,6 +463,12 @@ class Solver(Parameters):
         "docs/model.md, 'The friction drop, one step behind')",
         "text", choices=("lagged", "implicit"),
     )
+    step_cut: float = param(
+        0.5, "factor by which a step is cut after Newton fails (Exudyn's "
+             "adaptiveStepDecrease); 0.1 reaches a snapping tip's microsecond steps in fewer "
+             "failed tries (validation/benchmarks/README.md, 'Surfaces and tufts with 0.8.0')",
+        above=0.0, below=1.0,
+    )
     minimum_step_size: float = param(1e-9, "smallest step of the automatic step reduction",
                                      "s", above=0.0)
     spectral_radius: float = param(

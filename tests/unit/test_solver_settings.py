@@ -27,6 +27,12 @@ def test_defaults_solve_one_bristle_dense_on_one_thread():
     assert settings.timeIntegration.newton.maxIterations == 12
 
 
+def test_the_step_cut_reaches_exudyn():
+    assert dynamic_settings(Solver(), 1.0, 0.01).timeIntegration.adaptiveStepDecrease == 0.5
+    cut = dynamic_settings(Solver(step_cut=0.1), 1.0, 0.01).timeIntegration
+    assert cut.adaptiveStepDecrease == 0.1
+
+
 def test_a_touching_group_gets_a_jacobian_every_step_and_its_own_tolerance():
     solver = Solver(relative_tolerance=1e-7, touching_relative_tolerance=3e-5)
     touching = dynamic_settings(solver, end_time=1.0, output_interval=0.01, touching=True)
