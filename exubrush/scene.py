@@ -191,21 +191,26 @@ def _add_contact(scene: Scene, prepared: PreparedCase, surface_marker_number, ti
             parameters["dynamicFriction"] = 0.0  # blended in by a step hook
         return add_builtin_tip_contact(scene.mbs, surface_marker_number, tip_body,
                                        bristle.tip_radius, parameters)
-    law_surface = case.surface
-    if case.surface.kind == "mesh":  # the plane law in a frame on the tangent plane
-        law_surface = None
+    if case.surface.kind == "mesh":
         # far below until the first step puts it on the tangent plane
         surface_marker_number = rigid_marker(scene.mbs, scene.ground, [0.0, 0.0, -1e3])
         scene.tangent_planes.append((tip_node, surface_marker_number))
     lagged = lags_friction_drop(case)
-    key = (bristle.tip_radius, law_surface is None)
-    if key not in laws:
-        laws[key] = contact_user_function(
-            scene.mbs, case.contact, bristle.tip_radius, window, law_surface, lagged)
-    contact = add_tip_contact(scene.mbs, surface_marker_number, tip_body, laws[key], lagged)
+    if bristle.tip_radius not in laws:
+        laws[bristle.tip_radius] = contact_user_function(
+            scene.mbs, case.contact, bristle.tip_radius, window, law_surface(case), lagged)
+    contact = add_tip_contact(scene.mbs, surface_marker_number, tip_body,
+                              laws[bristle.tip_radius], lagged)
     if lagged:
         scene.lagged_contacts.append((contact, bristle.tip_radius))
     return contact
+
+
+def law_surface(case):
+    """The surface the tip law is written for: None for the plane law, which a plane and a
+    mesh (in a frame on its tangent plane, moved before every step) both use, else the
+    case's analytic surface (exubrush.surfaces.features)."""
+    return None if case.surface.kind in ("plane", "mesh") else case.surface
 
 
 def lags_friction_drop(case) -> bool:
@@ -325,9 +330,8 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
         scene.step_hooks.append(_tangent_plane_refresh(prepared.mesh, case.surface,
                                                        scene.tangent_planes))
     if scene.lagged_contacts:  # after the tangent planes: it reads the contacts' frames
-        scene.step_hooks.append(lagged_drop_hook(
-            scene.lagged_contacts, case.contact,
-            None if case.surface.kind in ("plane", "mesh") else case.surface))
+        scene.step_hooks.append(lagged_drop_hook(scene.lagged_contacts, case.contact,
+                                                 law_surface(case)))
     window = prepared.friction_window
     if case.contact.backend == "exudyn-builtin" and window is not None and scene.contacts:
         scene.step_hooks.append(

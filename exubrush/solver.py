@@ -126,8 +126,8 @@ def step_cap(step_size: float, larger_step: float, larger_allowed):
     Exudyn calls the hook with t at the end of the step it is about to try, whose size is
     fixed by then: a new cap applies from the next step on. A larger cap lets the step
     double towards it after ``solver.step_recovery_steps`` good steps; a smaller one takes
-    the step down to it at the next such point (or at the next failed try, which halves
-    it), so ``larger_allowed`` should look ahead by a few large steps.
+    the step down to it at the next such point (or at the next failed try, which cuts it
+    by ``solver.step_cut``), so ``larger_allowed`` should look ahead by a few large steps.
     """
 
     def cap(mbs, t):

@@ -68,15 +68,14 @@ from exubrush.simulation import simulate
 
 FLAT_SPEED = 0.8
 HEADS = {"default": [], "small": ["head.rows=2", "head.columns=2"]}
+IMPLICIT_DROP = "solver.friction_drop='implicit'"
 REFERENCE = ["model.kind='dfm'", "model.segments=24", "solver.step_size='0.25 ms'",
              "solver.relative_tolerance=1e-8", "solver.force_tolerance=0",
-             "solver.sliding_step_factor=1", "solver.friction_drop='implicit'"]
+             "solver.sliding_step_factor=1", IMPLICIT_DROP]
 # every variant starts from fixed solver settings (the defaults before the presets), so a
 # row means the same thing whatever the case defaults are today
 BASELINE = ["solver.step_size='1 ms'", "solver.relative_tolerance=1e-8",
-            "solver.force_tolerance=0", "solver.sliding_step_factor=1",
-            "solver.friction_drop='implicit'"]
-IMPLICIT_DROP = "solver.friction_drop='implicit'"
+            "solver.force_tolerance=0", "solver.sliding_step_factor=1", IMPLICIT_DROP]
 DFM6 = ["model.kind='dfm'", "model.segments=6"]
 LOOSE = ["solver.relative_tolerance=1e-6"]
 BUILTIN = "contact.backend='exudyn-builtin'"
