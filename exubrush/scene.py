@@ -300,11 +300,11 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
     for index, bristle in enumerate(bristles):
         if case.model.kind == "dfm":
             items = add_dfm_bristle(mbs, handle["bodyNumber"], bristle, bristle.material,
-                                    case.model.segments, origin, drawn, case.model.rotation)
+                                    case.model.segments, origin, drawn, case.model.node_rotation)
         else:
             items = add_prb_bristle(mbs, handle["bodyNumber"], bristle, bristle.material,
                                     prb.gamma, prb.stiffness_coefficient, origin, drawn,
-                                    case.model.rotation, case.model.prb_link)
+                                    case.model.node_rotation, case.model.prb_link)
         scene.keep_alive.extend(items.user_functions)
         polylines.append(_polyline(bristle, items.nodes, gamma))
         scene.node_sensors.append([

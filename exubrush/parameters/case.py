@@ -364,10 +364,12 @@ class Model(Parameters):
     kind: str = param("dfm", "bristle model", "text", choices=("dfm", "prb"))
     segments: int = param(6, "DFM: rigid bodies per bristle", above=0)
     rotation: str = param(
-        "euler-parameters",
+        "auto",
         "rotation coordinates of the bristle bodies: euler-parameters (4 per node and a "
-        "constraint) or rotation-vector (Exudyn's Lie-group node, 3 per node)",
-        "text", choices=("euler-parameters", "rotation-vector"),
+        "constraint), rotation-vector (Exudyn's Lie-group node, 3 per node) or auto (the "
+        "faster one for the model, measured: euler-parameters for DFM, rotation-vector "
+        "for PRB)",
+        "text", choices=("auto", "euler-parameters", "rotation-vector"),
     )
     prb_link: str = param(
         "buckling",
@@ -392,6 +394,16 @@ class Model(Parameters):
     prb_stiffness_coefficient: float = param(
         2.6001, "PRB: stiffness coefficient K_theta (explicit)", above=0.0
     )
+
+    @property
+    def node_rotation(self) -> str:
+        """The rotation coordinates the bodies get, ``rotation`` with "auto" resolved: a PRB
+        link on Euler parameters took 3.5-5 Newton iterations a step, on a rotation vector
+        2.6-3.8 (validation/benchmarks/README.md, "PRB on rotation vectors"); DFM chains
+        are faster on Euler parameters."""
+        if self.rotation != "auto":
+            return self.rotation
+        return "rotation-vector" if self.kind == "prb" else "euler-parameters"
 
 
 @dataclass(frozen=True)

@@ -5,6 +5,8 @@ import numpy as np
 import pytest
 
 from exubrush.parameters.io import load_case
+from exubrush.prepared import prepare
+from exubrush.scene import build_scene
 from exubrush.simulation import simulate
 
 pytestmark = pytest.mark.slow  # two models, two node types, each a short run
@@ -36,3 +38,16 @@ def test_rotation_vector_nodes_give_the_same_forces(model):
     # stick-slip event shifted by a step
     scale = np.max(np.abs(reference))
     assert np.max(np.abs(np.mean(other - reference, axis=0))) < 0.02 * scale
+
+
+@pytest.mark.parametrize("model, node_type", [("dfm", "RigidBodyEP"),
+                                              ("prb", "RigidBodyRotVecLG")])
+def test_auto_rotation_gives_each_model_its_faster_node(model, node_type):
+    # DFM is faster on Euler parameters, PRB's link on a rotation vector
+    # (validation/benchmarks/README.md, "PRB on rotation vectors")
+    case = load_case("orthogonal", ["head.rows=1", "head.columns=1", f"model.kind='{model}'"])
+    assert case.model.rotation == "auto"
+    scene = build_scene(prepare(case), (0,))
+    types = {scene.mbs.GetNode(n)["nodeType"] for n in range(scene.mbs.systemData.NumberOfNodes())}
+    assert node_type in types
+    assert types & {"RigidBodyEP", "RigidBodyRotVecLG"} == {node_type}

@@ -69,6 +69,7 @@ from exubrush.simulation import simulate
 FLAT_SPEED = 0.8
 HEADS = {"default": [], "small": ["head.rows=2", "head.columns=2"]}
 IMPLICIT_DROP = "solver.friction_drop='implicit'"
+EULER = "model.rotation='euler-parameters'"  # PRB's nodes before model.rotation = "auto"
 REFERENCE = ["model.kind='dfm'", "model.segments=24", "solver.step_size='0.25 ms'",
              "solver.relative_tolerance=1e-8", "solver.force_tolerance=0",
              "solver.sliding_step_factor=1", IMPLICIT_DROP]
@@ -131,12 +132,16 @@ VARIANTS = {
         "solver.sliding_step_factor=1", IMPLICIT_DROP] for name in ("fast", "balanced")},
     **{f"PRB, preset {name}, 0.6.0 settings": [
         *PRESETS[name].overrides, "model.kind='prb'", "solver.force_tolerance=0",
-        "solver.sliding_step_factor=1", IMPLICIT_DROP] for name in ("fast", "balanced")},
+        "solver.sliding_step_factor=1", IMPLICIT_DROP, EULER] for name in ("fast", "balanced")},
     # the presets as 0.7.0 ran them: the friction's drop within Newton
     **{f"preset {name}, 0.7.0 settings": [
         "model.kind='dfm'", *PRESETS[name].overrides, IMPLICIT_DROP] for name in PRESETS},
     **{f"PRB, preset {name}, 0.7.0 settings": [
-        *PRESETS[name].overrides, "model.kind='prb'", IMPLICIT_DROP] for name in PRESETS},
+        *PRESETS[name].overrides, "model.kind='prb'", IMPLICIT_DROP, EULER]
+       for name in PRESETS},
+    # PRB on Euler-parameter nodes, as before 0.9.0
+    **{f"PRB, preset {name}, Euler parameters": [
+        *PRESETS[name].overrides, "model.kind='prb'", EULER] for name in PRESETS},
     **{f"PRB, preset {name}, force tolerance 0": [
         *PRESETS[name].overrides, "model.kind='prb'", "solver.force_tolerance=0"]
        for name in ("fast", "balanced")},
