@@ -25,10 +25,12 @@ def dynamic_settings(solver: Solver, end_time: float, output_interval: float,
     Choices (each measured on this problem, validation/benchmarks/README.md): spectral
     radius 0 by default,
     modified Newton, automatic step reduction down to ``minimum_step_size`` (snap-through
-    at stroke reversals needs tiny steps) with a quick recovery (``step_recovery_steps``:
-    the step may double again after 2 good steps instead of Exudyn's 10, which kept the
-    step tiny through stick-slip chatter), ``adaptInitialResidual`` off (with it on, a
-    diverged first iteration resets the reference residual and a wrong step can pass), no
+    at stroke reversals needs tiny steps), a failed step cut by ``step_cut`` (0.25) and
+    allowed to double again after ``step_recovery_steps`` (4) good steps: Exudyn's 10 kept
+    the step tiny through stick-slip chatter before the friction drop was lagged, 2 (0.4.0
+    to 0.8.0) let it grow back into a snap-through and fail again; ``adaptInitialResidual``
+    off (with it on, a diverged first iteration resets the reference residual and a wrong
+    step can pass), no
     solution-norm bound (a small one caused false failures at snap-through), and
     ``newton_iterations`` (12) Newton iterations per try: a step that has not converged by
     then is cut at once instead of after Exudyn's 25 full-Newton iterations, each with a

@@ -476,9 +476,10 @@ class Solver(Parameters):
         "text", choices=("lagged", "implicit"),
     )
     step_cut: float = param(
-        0.5, "factor by which a step is cut after Newton fails (Exudyn's "
-             "adaptiveStepDecrease); 0.1 reaches a snapping tip's microsecond steps in fewer "
-             "failed tries (validation/benchmarks/README.md, 'Surfaces and tufts with 0.8.0')",
+        0.25, "factor by which a step is cut after Newton fails (Exudyn's "
+              "adaptiveStepDecrease; Exudyn's default 0.5): a snapping tip's microsecond "
+              "steps are reached in fewer failed tries (validation/benchmarks/README.md, "
+              "'Snaps: a step cut by 4 and held for 4 steps')",
         above=0.0, below=1.0,
     )
     minimum_step_size: float = param(1e-9, "smallest step of the automatic step reduction",
@@ -515,7 +516,8 @@ class Solver(Parameters):
         "text", choices=("auto", "EigenDense", "EXUdense", "EigenSparse"),
     )
     step_recovery_steps: int = param(
-        2, "successful steps after a step reduction before the step may grow again",
+        4, "successful steps after a step reduction before the step may grow again (Exudyn's "
+           "default 10; 2 before 0.9.0: through a snap the step grew back and failed again)",
         minimum=1,
     )
     partition: str = param(

@@ -27,10 +27,12 @@ def test_defaults_solve_one_bristle_dense_on_one_thread():
     assert settings.timeIntegration.newton.maxIterations == 12
 
 
-def test_the_step_cut_reaches_exudyn():
-    assert dynamic_settings(Solver(), 1.0, 0.01).timeIntegration.adaptiveStepDecrease == 0.5
-    cut = dynamic_settings(Solver(step_cut=0.1), 1.0, 0.01).timeIntegration
-    assert cut.adaptiveStepDecrease == 0.1
+def test_the_step_control_reaches_exudyn():
+    default = dynamic_settings(Solver(), 1.0, 0.01).timeIntegration
+    assert (default.adaptiveStepDecrease, default.adaptiveStepRecoverySteps) == (0.25, 4)
+    chosen = dynamic_settings(Solver(step_cut=0.1, step_recovery_steps=7), 1.0, 0.01)
+    assert chosen.timeIntegration.adaptiveStepDecrease == 0.1
+    assert chosen.timeIntegration.adaptiveStepRecoverySteps == 7
 
 
 def test_a_touching_group_gets_a_jacobian_every_step_and_its_own_tolerance():
@@ -110,7 +112,8 @@ def test_the_step_cap_follows_the_condition_once_the_solver_exists():
 # applies a preset on top: a preset must set each of them, or its rows measure the old one
 OLDER_SETTINGS = ["solver.step_size='1 ms'", "solver.relative_tolerance=1e-8",
                   "solver.force_tolerance=0", "solver.sliding_step_factor=1",
-                  "solver.friction_drop='implicit'", "model.segments=8"]
+                  "solver.friction_drop='implicit'", "solver.step_cut=0.5",
+                  "solver.step_recovery_steps=2", "model.segments=8"]
 
 
 @pytest.mark.parametrize("name", ["fast", "balanced", "accurate"])

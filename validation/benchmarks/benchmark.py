@@ -70,13 +70,16 @@ FLAT_SPEED = 0.8
 HEADS = {"default": [], "small": ["head.rows=2", "head.columns=2"]}
 IMPLICIT_DROP = "solver.friction_drop='implicit'"
 EULER = "model.rotation='euler-parameters'"  # PRB's nodes before model.rotation = "auto"
+# how a failed step was cut and how soon it grew again before 0.9.0
+OLD_STEP_CONTROL = ["solver.step_cut=0.5", "solver.step_recovery_steps=2"]
 REFERENCE = ["model.kind='dfm'", "model.segments=24", "solver.step_size='0.25 ms'",
              "solver.relative_tolerance=1e-8", "solver.force_tolerance=0",
-             "solver.sliding_step_factor=1", IMPLICIT_DROP]
+             "solver.sliding_step_factor=1", IMPLICIT_DROP, *OLD_STEP_CONTROL]
 # every variant starts from fixed solver settings (the defaults before the presets), so a
 # row means the same thing whatever the case defaults are today
 BASELINE = ["solver.step_size='1 ms'", "solver.relative_tolerance=1e-8",
-            "solver.force_tolerance=0", "solver.sliding_step_factor=1", IMPLICIT_DROP]
+            "solver.force_tolerance=0", "solver.sliding_step_factor=1", IMPLICIT_DROP,
+            *OLD_STEP_CONTROL]
 DFM6 = ["model.kind='dfm'", "model.segments=6"]
 LOOSE = ["solver.relative_tolerance=1e-6"]
 BUILTIN = "contact.backend='exudyn-builtin'"
@@ -129,15 +132,24 @@ VARIANTS = {
     # the presets as 0.6.0 ran them: no force tolerance, the step held through the strokes
     **{f"preset {name}, 0.6.0 settings": [
         "model.kind='dfm'", *PRESETS[name].overrides, "solver.force_tolerance=0",
-        "solver.sliding_step_factor=1", IMPLICIT_DROP] for name in ("fast", "balanced")},
+        "solver.sliding_step_factor=1", IMPLICIT_DROP, *OLD_STEP_CONTROL]
+       for name in ("fast", "balanced")},
     **{f"PRB, preset {name}, 0.6.0 settings": [
         *PRESETS[name].overrides, "model.kind='prb'", "solver.force_tolerance=0",
-        "solver.sliding_step_factor=1", IMPLICIT_DROP, EULER] for name in ("fast", "balanced")},
+        "solver.sliding_step_factor=1", IMPLICIT_DROP, EULER, *OLD_STEP_CONTROL]
+       for name in ("fast", "balanced")},
     # the presets as 0.7.0 ran them: the friction's drop within Newton
     **{f"preset {name}, 0.7.0 settings": [
-        "model.kind='dfm'", *PRESETS[name].overrides, IMPLICIT_DROP] for name in PRESETS},
+        "model.kind='dfm'", *PRESETS[name].overrides, IMPLICIT_DROP, *OLD_STEP_CONTROL]
+       for name in PRESETS},
     **{f"PRB, preset {name}, 0.7.0 settings": [
-        *PRESETS[name].overrides, "model.kind='prb'", IMPLICIT_DROP, EULER]
+        *PRESETS[name].overrides, "model.kind='prb'", IMPLICIT_DROP, EULER, *OLD_STEP_CONTROL]
+       for name in PRESETS},
+    # the presets as 0.8.0 ran them: the step cut by 2 and grown again after 2 steps
+    **{f"preset {name}, 0.8.0 settings": [
+        "model.kind='dfm'", *PRESETS[name].overrides, *OLD_STEP_CONTROL] for name in PRESETS},
+    **{f"PRB, preset {name}, 0.8.0 settings": [
+        *PRESETS[name].overrides, "model.kind='prb'", EULER, *OLD_STEP_CONTROL]
        for name in PRESETS},
     # PRB on Euler-parameter nodes, as before 0.9.0
     **{f"PRB, preset {name}, Euler parameters": [
