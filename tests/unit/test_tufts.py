@@ -169,10 +169,11 @@ def test_groups_that_interleave_keep_ascending_indices():
 def test_a_run_with_contact_between_bristles_is_warned_of_its_cost():
     prepared = prepare(load_case("tuft", ["contact.between_bristles=true"]))
     assert prepared.groups == (tuple(range(37)),)
-    assert prepared.warnings == (
-        "contact.between_bristles: 1 system(s), the largest of 37 bristles that can touch, "
-        "each solved on one core; contact between bristles is slow (7 touching filaments "
-        "took 97 s per slide period, 7 s without)",)
+    # one warning naming the one system and its size (the measured times in it change with
+    # each release)
+    (warning,) = prepared.warnings
+    assert warning.startswith("contact.between_bristles: 1 system(s), the largest of 37 "
+                              "bristles that can touch, each solved on one core")
 
 
 def test_the_manual_brush_is_40_tufts_of_37_filaments_that_reach_each_other():
