@@ -131,3 +131,17 @@ def test_a_mesh_needs_a_file():
 
 def test_mesh_error_is_a_value_error():
     assert issubclass(MeshError, ValueError)
+
+
+def test_a_mesh_sent_to_a_worker_finds_the_same_closest_points(sphere_file):
+    # workers receive the prepared case pickled: the search tree (libigl) is made again
+    # there, not pickled
+    import pickle
+
+    mesh = read_mesh(sphere_file, "mm")
+    point = [0.3, -0.2, 0.45]
+    here = mesh.closest(point)
+    there = pickle.loads(pickle.dumps(mesh)).closest(point)
+    np.testing.assert_array_equal(here[0], there[0])
+    np.testing.assert_array_equal(here[1], there[1])
+    assert here[2] == there[2]
