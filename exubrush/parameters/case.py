@@ -398,9 +398,9 @@ class Model(Parameters):
     @property
     def node_rotation(self) -> str:
         """The rotation coordinates the bodies get, ``rotation`` with "auto" resolved: a PRB
-        link on Euler parameters took 3.5-5 Newton iterations a step, on a rotation vector
-        2.6-3.8 (validation/benchmarks/README.md, "PRB on rotation vectors"); DFM chains
-        are faster on Euler parameters."""
+        link on Euler parameters took 3.5-5.2 Newton iterations a step and 5.5 times the
+        Jacobians, on a rotation vector 2.6-3.8 (validation/benchmarks/README.md, "PRB on
+        rotation vectors"); DFM chains are faster on Euler parameters."""
         if self.rotation != "auto":
             return self.rotation
         return "rotation-vector" if self.kind == "prb" else "euler-parameters"
