@@ -132,10 +132,17 @@ def step_cap(step_size: float, larger_step: float, larger_allowed):
     by ``solver.step_cut``), so ``larger_allowed`` should look ahead by a few large steps.
     """
 
+    last = [None, None]  # the solver and the cap last set on it
+
     def cap(mbs, t):
         solver = mbs.sys.get("dynamicSolver")
         if solver is not None:
-            solver.it.maxStepSize = larger_step if larger_allowed(t) else step_size
+            largest = larger_step if larger_allowed(t) else step_size
+            # Exudyn sets maxStepSize only when a solve starts: an unchanged cap is not set
+            # again (~0.6 µs a step)
+            if solver is not last[0] or largest != last[1]:
+                solver.it.maxStepSize = largest
+                last[:] = [solver, largest]
 
     return cap
 
