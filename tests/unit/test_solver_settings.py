@@ -107,7 +107,6 @@ def test_the_step_cap_follows_the_condition_once_the_solver_exists():
     assert caps == [2e-3, 5e-3, 5e-3, 2e-3]
 
 
-
 # the benchmark harness starts every variant from fixed older settings (its BASELINE) and
 # applies a preset on top: a preset must set each of them, or its rows measure the old one
 OLDER_SETTINGS = ["solver.step_size='1 ms'", "solver.relative_tolerance=1e-8",
