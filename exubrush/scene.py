@@ -311,7 +311,8 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
         else:
             items = add_prb_bristle(mbs, handle["bodyNumber"], bristle, bristle.material,
                                     prb.gamma, prb.stiffness_coefficient, origin, drawn,
-                                    case.model.node_rotation, case.model.prb_link)
+                                    case.model.node_rotation, case.model.prb_link,
+                                    case.model.prb_pivot)
         scene.keep_alive.extend(items.user_functions)
         polylines.append(_polyline(bristle, items.nodes, gamma))
         scene.node_sensors.append([

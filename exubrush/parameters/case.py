@@ -378,6 +378,13 @@ class Model(Parameters):
         "buckling), so a pushed bristle snaps through; 'rigid' is the paper's link",
         "text", choices=("buckling", "rigid"),
     )
+    prb_pivot: str = param(
+        "spring",
+        "PRB, buckling link: what holds the link's axis on the pivot: 'spring' (a lateral "
+        "spring 10 times the bristle's axial stiffness, acting where the link passes the "
+        "pivot; Newton needs fewer iterations) or 'joint' (Exudyn's constraint, exact)",
+        "text", choices=("spring", "joint"),
+    )
     prb_parameters: str = param(
         "howell-table",
         "PRB: 'howell-table' interpolates gamma, K_theta in Howell's table at n; 'fitted' "

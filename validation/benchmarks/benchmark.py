@@ -70,6 +70,7 @@ FLAT_SPEED = 0.8
 HEADS = {"default": [], "small": ["head.rows=2", "head.columns=2"]}
 IMPLICIT_DROP = "solver.friction_drop='implicit'"
 EULER = "model.rotation='euler-parameters'"  # PRB's nodes before model.rotation = "auto"
+JOINT_PIVOT = "model.prb_pivot='joint'"  # PRB's sliding link on a constraint, before 0.10.0
 # how a failed step was cut and how soon it grew again before 0.9.0
 OLD_STEP_CONTROL = ["solver.step_cut=0.5", "solver.step_recovery_steps=2"]
 REFERENCE = ["model.kind='dfm'", "model.segments=24", "solver.step_size='0.25 ms'",
@@ -136,24 +137,27 @@ VARIANTS = {
        for name in ("fast", "balanced")},
     **{f"PRB, preset {name}, 0.6.0 settings": [
         *PRESETS[name].overrides, "model.kind='prb'", "solver.force_tolerance=0",
-        "solver.sliding_step_factor=1", IMPLICIT_DROP, EULER, *OLD_STEP_CONTROL]
-       for name in ("fast", "balanced")},
+        "solver.sliding_step_factor=1", IMPLICIT_DROP, EULER, *OLD_STEP_CONTROL,
+        JOINT_PIVOT] for name in ("fast", "balanced")},
     # the presets as 0.7.0 ran them: the friction's drop within Newton
     **{f"preset {name}, 0.7.0 settings": [
         "model.kind='dfm'", *PRESETS[name].overrides, IMPLICIT_DROP, *OLD_STEP_CONTROL]
        for name in PRESETS},
     **{f"PRB, preset {name}, 0.7.0 settings": [
-        *PRESETS[name].overrides, "model.kind='prb'", IMPLICIT_DROP, EULER, *OLD_STEP_CONTROL]
-       for name in PRESETS},
+        *PRESETS[name].overrides, "model.kind='prb'", IMPLICIT_DROP, EULER, *OLD_STEP_CONTROL,
+        JOINT_PIVOT] for name in PRESETS},
     # the presets as 0.8.0 ran them: the step cut by 2 and grown again after 2 steps
     **{f"preset {name}, 0.8.0 settings": [
         "model.kind='dfm'", *PRESETS[name].overrides, *OLD_STEP_CONTROL] for name in PRESETS},
     **{f"PRB, preset {name}, 0.8.0 settings": [
-        *PRESETS[name].overrides, "model.kind='prb'", EULER, *OLD_STEP_CONTROL]
+        *PRESETS[name].overrides, "model.kind='prb'", EULER, *OLD_STEP_CONTROL, JOINT_PIVOT]
        for name in PRESETS},
     # PRB on Euler-parameter nodes, as before 0.9.0
     **{f"PRB, preset {name}, Euler parameters": [
-        *PRESETS[name].overrides, "model.kind='prb'", EULER] for name in PRESETS},
+        *PRESETS[name].overrides, "model.kind='prb'", EULER, JOINT_PIVOT] for name in PRESETS},
+    # PRB's sliding link held on the pivot by Exudyn's joint, as 0.9.0 ran it
+    **{f"PRB, preset {name}, 0.9.0 settings": [
+        *PRESETS[name].overrides, "model.kind='prb'", JOINT_PIVOT] for name in PRESETS},
     **{f"PRB, preset {name}, force tolerance 0": [
         *PRESETS[name].overrides, "model.kind='prb'", "solver.force_tolerance=0"]
        for name in ("fast", "balanced")},
