@@ -95,6 +95,14 @@ def resolve(feature: Feature | Choice, m=FLOAT_MATH) -> Feature:
     return Feature(normal, m.IfThenElse(feature.condition, yes.distance, no.distance))
 
 
+def taken(feature: Feature | Choice) -> Feature:
+    """The Feature a Choice selects at the point, on floats (its conditions plain
+    booleans): the branch :func:`resolve` would pick, without evaluating the others."""
+    while isinstance(feature, Choice):
+        feature = feature.if_true if feature.condition else feature.if_false
+    return feature
+
+
 def _round_feature(a, b, c, radius, m) -> Feature:
     """Outside of a ball (b given) or of a cylinder along the second axis (b None) of
     ``radius`` centred at the origin of (a, b, c)."""

@@ -262,14 +262,23 @@ def test_forces_with_the_drop_at_the_current_slip_are_the_laws(speed):
         friction_per_speed(LAW, speed**2), rel=1e-12)
 
 
-@pytest.mark.parametrize("seed", range(4))
-def test_drop_ratios_follow_each_features_own_slip(seed):
-    # on a tooth row a sphere near an edge sees up to three features, each with its own
-    # normal: the ratio of each is r at that feature's slip, and the surface law given
-    # them equals the implicit law
+SURFACES_WITH_FEATURES = [
+    Surface(kind="tooth-row"),
+    Surface(kind="tooth-row", gap_width=0.5),  # narrower than the sphere: both teeth
+    Surface(kind="cylinder"),
+    Surface(kind="sphere"),
+]
+
+
+@pytest.mark.parametrize("row", SURFACES_WITH_FEATURES, ids=lambda s: f"{s.kind}-{s.gap_width}")
+@pytest.mark.parametrize("seed", range(12))
+def test_drop_ratios_follow_each_features_own_slip(seed, row):
+    # a sphere near a tooth's edge sees up to three features, each with its own normal:
+    # the ratio of each is r at that feature's slip (computed by the generic helpers, which
+    # also record the law into Exudyn's expressions: the hook's plain arithmetic must give
+    # the same numbers exactly), and the surface law given them equals the implicit law
     rng = np.random.default_rng(seed)
-    row = Surface(kind="tooth-row")
-    centre = [rng.uniform(-2.0, 2.0), 0.0, rng.uniform(-0.5, 0.5)]
+    centre = [rng.uniform(-4.0, 4.0), rng.uniform(-1.0, 1.0), rng.uniform(-1.2, 0.6)]
     velocity = rng.normal(scale=1.3, size=3).tolist()
     omega = rng.normal(scale=2.0, size=3).tolist()
     found = features(row, centre, 0.4)

@@ -18,6 +18,7 @@ from exubrush.surfaces import (
     height,
     orientation,
     resolve,
+    taken,
     to_surface_frame,
 )
 
@@ -151,6 +152,16 @@ def test_choice_takes_the_branch_of_its_condition():
     up, side = Feature((0.0, 0.0, 1.0), 0.3), Feature((1.0, 0.0, 0.0), 0.7)
     assert resolve(Choice(True, up, side)) == up
     assert resolve(Choice(False, up, side), FLOAT_MATH) == side
+
+
+@pytest.mark.parametrize("gap", [1.0, 0.5])
+def test_taken_gives_the_feature_resolve_gives_on_floats(gap):
+    # the pre-step hooks follow the taken branch instead of resolving every branch
+    row = Surface(kind="tooth-row", gap_width=gap)
+    rng = np.random.default_rng(7)
+    for x, z in rng.uniform([-4.0, -1.2], [4.0, 0.6], size=(300, 2)):
+        for feature in features(row, (x, 0.0, z), 0.4):
+            assert taken(feature) == resolve(feature)
 
 
 def test_placement_turns_and_shifts_into_the_surface_frame():
