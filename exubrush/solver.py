@@ -61,6 +61,7 @@ def dynamic_settings(solver: Solver, end_time: float, output_interval: float,
     ti.generalizedAlpha.spectralRadius = solver.spectral_radius
     ti.generalizedAlpha.computeInitialAccelerations = True
     ti.newton.useModifiedNewton = solver.modified_newton
+    ti.newton.modifiedNewtonContractivity = solver.newton_contractivity
     ti.newton.modifiedNewtonJacUpdatePerStep = touching
     ti.newton.relativeTolerance = (solver.touching_relative_tolerance if touching
                                    else solver.relative_tolerance)

@@ -512,6 +512,14 @@ class Solver(Parameters):
     )
     modified_newton: bool = param(True, "reuse the Jacobian between Newton iterations and "
                                         "steps (false: a fresh Jacobian every iteration)")
+    newton_contractivity: float = param(
+        0.5, "modified Newton makes a new Jacobian when an iteration shrinks the residual by "
+             "less than this factor (Exudyn's modifiedNewtonContractivity); 1 made the "
+             "interdental case 9 % faster, its bristles' mean force 0.3-1.4 % different "
+             "(validation/benchmarks/README.md, 'Tooth rows: the drop hook and Newton's "
+             "contractivity')",
+        above=0.0, below=10.0,
+    )
     # below 10, one-bristle solves failed at a reversal (validation/benchmarks/README.md)
     newton_iterations: int = param(
         12, "Newton iterations before a step is given up and cut", minimum=10,

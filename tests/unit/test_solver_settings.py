@@ -35,6 +35,13 @@ def test_the_step_control_reaches_exudyn():
     assert chosen.timeIntegration.adaptiveStepRecoverySteps == 7
 
 
+def test_newtons_contractivity_reaches_exudyn():
+    default = dynamic_settings(Solver(), 1.0, 0.01).timeIntegration.newton
+    assert default.modifiedNewtonContractivity == 0.5  # Exudyn's own default
+    chosen = dynamic_settings(Solver(newton_contractivity=1.0), 1.0, 0.01)
+    assert chosen.timeIntegration.newton.modifiedNewtonContractivity == 1.0
+
+
 def test_a_touching_group_gets_a_jacobian_every_step_and_its_own_tolerance():
     solver = Solver(relative_tolerance=1e-7, touching_relative_tolerance=3e-5)
     touching = dynamic_settings(solver, end_time=1.0, output_interval=0.01, touching=True)
