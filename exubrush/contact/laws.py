@@ -256,9 +256,12 @@ def drop_ratios(law: ContactLaw, radius: float, surface: Surface | None, centre,
 
 def _slip_speed(radius: float, normal, velocity, omega) -> float:
     """|slip| [mm/s] of :func:`feature_slip` on floats, in plain arithmetic (a pre-step
-    hook calls it for every tip and step; the generic helpers cost 40 µs a call on a tooth
-    row, this 10 µs). The same operations in the same order, so the same numbers: the
-    terms the generic code drops are exact zeros (tests/unit/test_contact_laws.py)."""
+    hook calls it for every tip and step: :func:`drop_ratios` took 40 µs a call on a tooth
+    row with the generic helpers, 9 µs with this). The same operations in the same order,
+    so the same numbers (tests/unit/test_contact_laws.py): the terms the generic code
+    drops are exact zeros, except where a computed normal has a component of exactly ±1
+    beside a tiny one, whose term (~1e-9 relative) the generic shortcut for a unit axis
+    drops and this keeps."""
     nx, ny, nz = normal
     vx, vy, vz = velocity
     wx, wy, wz = omega

@@ -107,6 +107,8 @@ def add_prb_bristle(
             visualization=eii.VObjectJointSpherical(show=False)))
         springs = add_spring_damper(mbs, pivot_on_handle, pivot_on_link, K, C)
         return BristleItems(nodes=[node], bodies=[body], connectors=[joint, springs])
+    if pivot not in ("spring", "joint"):
+        raise ValueError(f"pivot {pivot!r}: use 'spring' or 'joint'")
     # the handle's pivot stays on the link's axis (y, z in the link frame); the link slides
     laws = []
     if pivot == "joint":
@@ -137,19 +139,24 @@ def _add_pivot_spring(mbs, pivot_on_link, pivot_on_handle, bristle, material):
 
     A connector in the link's frame from the link's pivot marker (marker 0) to the handle's
     (marker 1) sees the handle's pivot at u = (s, u_y, u_z) [mm] from the link's, s the
-    slide. Its user function returns the lateral force f = (0, k u_y + c v_y, k u_z + c v_z)
-    [N] (k = PIVOT_STIFFNESS_FACTOR · EA/l, c = damping_time · k) and the torque u × f
-    [N·mm], which Exudyn applies to the link (and its opposite to the driven handle): so the
-    force acts on the link at its point on the pivot, as the joint's reaction does, and the
-    spring converges to the joint as k grows (without the torque the mean force moved by
-    0.8 %: validation/benchmarks/README.md)."""
+    slide. The link's material point there moves relative to it with w = v + ω × u [mm/s]
+    (v the markers' relative velocity, ω their relative angular velocity, both in the
+    link's frame, as Exudyn hands them; the handle does not rotate). The user function
+    returns the lateral force f = (0, k u_y + c w_y, k u_z + c w_z) [N] (k =
+    PIVOT_STIFFNESS_FACTOR · EA/l, c = damping_time · k) and the torque u × f [N·mm], which
+    Exudyn applies to the link (and its opposite to the driven handle): so the force acts
+    on the link at its point on the pivot, as the joint's reaction does, and the spring
+    converges to the joint as k grows (without the torque the mean force moved by 0.4-0.85
+    %; with v instead of w the damping braked the link's rotation by c s², soon more than
+    its torsional damper: validation/benchmarks/README.md)."""
     stiffness = PIVOT_STIFFNESS_FACTOR * axial_spring_constants(bristle, material)[0]
     damping = material.damping_time * stiffness
 
     def holding(mbs, t, itemNumber, u, rotation, v, omega, stiffness_, damping_, rotJ0,
                 rotJ1, offset):
-        f_y = stiffness * u[1] + damping * v[1]
-        f_z = stiffness * u[2] + damping * v[2]
+        # (v + ω × u) along y and z
+        f_y = stiffness * u[1] + damping * (v[1] + omega[2] * u[0] - omega[0] * u[2])
+        f_z = stiffness * u[2] + damping * (v[2] + omega[0] * u[1] - omega[1] * u[0])
         return [0.0, f_y, f_z, u[1] * f_z - u[2] * f_y, -u[0] * f_z, u[0] * f_y]
 
     law = CreateSymbolicUserFunction(mbs, holding, "springForceTorqueUserFunction",

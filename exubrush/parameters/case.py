@@ -380,9 +380,10 @@ class Model(Parameters):
     )
     prb_pivot: str = param(
         "spring",
-        "PRB, buckling link: what holds the link's axis on the pivot: 'spring' (a lateral "
-        "spring 10 times the bristle's axial stiffness, acting where the link passes the "
-        "pivot; Newton needs fewer iterations) or 'joint' (Exudyn's constraint, exact)",
+        "PRB, buckling link: what holds the link's axis on the pivot: 'spring' (a stiff "
+        "lateral spring, exubrush.models.prb.PIVOT_STIFFNESS_FACTOR times the bristle's "
+        "axial stiffness, acting where the link passes the pivot; Newton needs fewer "
+        "iterations) or 'joint' (Exudyn's constraint, exact)",
         "text", choices=("spring", "joint"),
     )
     prb_parameters: str = param(
@@ -515,7 +516,8 @@ class Solver(Parameters):
     newton_contractivity: float = param(
         0.5, "modified Newton makes a new Jacobian when an iteration shrinks the residual by "
              "less than this factor (Exudyn's modifiedNewtonContractivity); 1 made the "
-             "interdental case 9 % faster, its bristles' mean force 0.3-1.4 % different "
+             "interdental case 9 % faster, but moved the head's mean force by 0.34 % and "
+             "single bristles' by up to 1.4 % "
              "(validation/benchmarks/README.md, 'Tooth rows: the drop hook and Newton's "
              "contractivity')",
         above=0.0, below=10.0,
