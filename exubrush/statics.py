@@ -72,9 +72,10 @@ def pinned_prb_push(
     stiffness_coefficient: float = 2.67617,
     load_steps: int = 40,
 ) -> float:
-    """Shortening [mm] of a PRB bristle with the buckling link (exubrush.models.buckling),
-    clamped at its root, its tip held on the bristle's axis (free to slide along it and to
-    rotate: a pinned tip) and pushed along the axis towards the root by ``force`` [N]."""
+    """Shortening [mm] of a PRB bristle with the buckling link (exubrush.models.buckling)
+    on its default pivot spring, clamped at its root, its tip held on the bristle's axis
+    (free to slide along it and to rotate: a pinned tip) and pushed along the axis towards
+    the root by ``force`` [N]."""
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
     ground = mbs.AddObject(eii.ObjectGround())
