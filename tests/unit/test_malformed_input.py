@@ -74,7 +74,7 @@ MALFORMED = [
     ("toml", "[output]\nsolution_file = 1\n", "output.solution_file: expected true or false"),
     ("set", ["contact.backend='builtin'"],
      "contact.backend: 'builtin' is not one of 'paper-symbolic', 'paper-python', "
-     "'exudyn-builtin'"),
+     "'paper-compiled', 'exudyn-builtin'"),
     # units
     ("set", ["head.bristle.length=5"], "head.bristle.length: 5 has no unit"),
     ("set", ["contact.damping='0.2'"], "contact.damping: '0.2' has no unit"),
