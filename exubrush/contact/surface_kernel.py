@@ -190,6 +190,20 @@ VELOCITY_STEP = 1e-5
 
 
 @njit(**_JIT)
+def _both_sides(q, q_t, varied, column, step, reference, turn, origin, kind, params, law,
+                radius, scale, drops, plus, minus, local):
+    """node_load with ``varied`` (q or q_t itself) moved by ±``step`` in ``column``."""
+    held = varied[column]
+    varied[column] = held + step
+    node_load(q, q_t, reference, turn, origin, kind, params, law, radius, scale, drops, plus,
+              local)
+    varied[column] = held - step
+    node_load(q, q_t, reference, turn, origin, kind, params, law, radius, scale, drops, minus,
+              local)
+    varied[column] = held
+
+
+@njit(**_JIT)
 def node_jacobian(q, q_t, reference, turn, origin, kind, params, law, radius, scale, drops,
                   f_position, f_velocity, triplets):
     """−(∂f/∂q · f_position + ∂f/∂q_t · f_velocity) of :func:`node_load` by central
@@ -201,27 +215,15 @@ def node_jacobian(q, q_t, reference, turn, origin, kind, params, law, radius, sc
     moved = q.copy()
     rates = q_t.copy()
     for column in range(7):
-        held = moved[column]
-        moved[column] = held + POSITION_STEP
-        node_load(moved, rates, reference, turn, origin, kind, params, law, radius, scale,
-                  drops, plus, local)
-        moved[column] = held - POSITION_STEP
-        node_load(moved, rates, reference, turn, origin, kind, params, law, radius, scale,
-                  drops, minus, local)
-        moved[column] = held
+        _both_sides(moved, rates, moved, column, POSITION_STEP, reference, turn, origin, kind,
+                    params, law, radius, scale, drops, plus, minus, local)
         for row in range(7):
             triplets[7 * column + row, 0] = row
             triplets[7 * column + row, 1] = column
             triplets[7 * column + row, 2] = -f_position * (plus[row] - minus[row]) / (
                 2.0 * POSITION_STEP)
-        held = rates[column]
-        rates[column] = held + VELOCITY_STEP
-        node_load(moved, rates, reference, turn, origin, kind, params, law, radius, scale,
-                  drops, plus, local)
-        rates[column] = held - VELOCITY_STEP
-        node_load(moved, rates, reference, turn, origin, kind, params, law, radius, scale,
-                  drops, minus, local)
-        rates[column] = held
+        _both_sides(moved, rates, rates, column, VELOCITY_STEP, reference, turn, origin, kind,
+                    params, law, radius, scale, drops, plus, minus, local)
         for row in range(7):
             triplets[7 * column + row, 2] -= f_velocity * (plus[row] - minus[row]) / (
                 2.0 * VELOCITY_STEP)
