@@ -11,7 +11,9 @@ tests/integration/test_contact_connector.py). The law is
 :func:`exubrush.contact.laws.sphere_surface_force` over the surface's features
 (exubrush.surfaces) on any other surface, recorded as an Exudyn symbolic (C++) user
 function by default (``contact.backend = "paper-symbolic"``), or called as plain Python
-(``"paper-python"``).
+(``"paper-python"``). With ``"paper-compiled"`` the connector keeps the symbolic law for
+its outputs, switched off, and :func:`add_compiled_tip_contact` computes the contact on a
+curved analytic surface.
 
 The approximate fast path (``"exudyn-builtin"``) uses Exudyn's own ``ObjectContactSphereTriangle``
 against one triangle covering the plane, with the law's nearest parameters
@@ -72,9 +74,10 @@ def contact_user_function(
     """Return an Exudyn spring-force-torque user function for one sphere radius and
     ``surface`` (default: the plane).
 
-    ``law.backend`` chooses how: ``"paper-symbolic"`` records the law into a C++ expression
-    tree (keep the returned object alive as long as ``mbs`` runs); ``"paper-python"``
-    returns the plain Python function.
+    ``law.backend`` chooses how: ``"paper-symbolic"`` (and ``"paper-compiled"``, whose
+    connector keeps it for its outputs) records the law into a C++ expression tree (keep
+    the returned object alive as long as ``mbs`` runs); ``"paper-python"`` returns the
+    plain Python function.
 
     Parameters
     ----------

@@ -288,9 +288,9 @@ class ContactLaw(Parameters):
         "paper-symbolic",
         "how the contact is computed: paper-symbolic = the paper's law compiled by Exudyn "
         "(C++); paper-python = the same law in Python (slower, same forces); paper-compiled = "
-        "the same law compiled with numba with a Jacobian of its own where it is built (DFM "
-        "tips over a cylinder, sphere or tooth row; 2.2x on the interdental case), else "
-        "paper-symbolic; exudyn-builtin = "
+        "the same law compiled with numba with a Jacobian of its own where it is built (tips "
+        "on Euler-parameter nodes, as DFM's, over a cylinder, sphere or tooth row; 2.2x on "
+        "the interdental case), else paper-symbolic; exudyn-builtin = "
         "Exudyn's own sphere-triangle contact with the nearest parameters (one friction "
         "coefficient, linear damping: an approximation, see docs/model.md)",
         "text", choices=CONTACT_BACKENDS,
