@@ -79,9 +79,8 @@ class Scene:
     tangent_planes: list = field(default_factory=list)
     # (connector, tip radius) of the tip contacts that read a lagged friction drop
     lagged_contacts: list = field(default_factory=list)
-    # connector -> the lagged drop ratios its compiled contact reads, and the compiled
-    # contact's object (contact.backend "paper-compiled")
-    compiled_drops: dict = field(default_factory=dict)
+    # connector -> (the object of its compiled contact, the drop ratios that object
+    # reads), where contact.backend "paper-compiled" applies (add_compiled_tip_contact)
     compiled_contacts: dict = field(default_factory=dict)
     ground: int = 0
     # callables (mbs, t) that the solve must call before every step
@@ -222,9 +221,7 @@ def _add_contact(scene: Scene, prepared: PreparedCase, surface_marker_number, ti
             scene.mbs, contact, tip_node, case.surface, case.contact, bristle.tip_radius,
             window, lagged)
         scene.keep_alive.append(functions)
-        scene.compiled_contacts[contact] = item
-        if lagged:
-            scene.compiled_drops[contact] = drops
+        scene.compiled_contacts[contact] = (item, drops)
     return contact
 
 
@@ -360,7 +357,7 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
                     writeToFile=False, outputVariableType=exu.OutputVariableType.RotationMatrix))
             compiled = contact in scene.compiled_contacts
             if compiled:  # an object, not a connector
-                sensor = eii.SensorBody(bodyNumber=scene.compiled_contacts[contact],
+                sensor = eii.SensorBody(bodyNumber=scene.compiled_contacts[contact][0],
                                         storeInternal=True, writeToFile=False,
                                         outputVariableType=exu.OutputVariableType.Force)
             else:
@@ -374,8 +371,9 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
         scene.step_hooks.append(_tangent_plane_refresh(prepared.mesh, case.surface,
                                                        scene.tangent_planes))
     if scene.lagged_contacts:  # after the tangent planes: it reads the contacts' frames
+        drops = {contact: ratios for contact, (_, ratios) in scene.compiled_contacts.items()}
         scene.step_hooks.append(lagged_drop_hook(scene.lagged_contacts, case.contact,
-                                                 law_surface(case), scene.compiled_drops))
+                                                 law_surface(case), drops))
     window = prepared.friction_window
     if case.contact.backend == "exudyn-builtin" and window is not None and scene.contacts:
         scene.step_hooks.append(

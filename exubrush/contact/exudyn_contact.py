@@ -11,9 +11,9 @@ tests/integration/test_contact_connector.py). The law is
 :func:`exubrush.contact.laws.sphere_surface_force` over the surface's features
 (exubrush.surfaces) on any other surface, recorded as an Exudyn symbolic (C++) user
 function by default (``contact.backend = "paper-symbolic"``), or called as plain Python
-(``"paper-python"``). With ``"paper-compiled"`` the connector keeps the symbolic law for
-its outputs, switched off, and :func:`add_compiled_tip_contact` computes the contact on a
-curved analytic surface.
+(``"paper-python"``). With ``"paper-compiled"`` the connector is made as for the symbolic
+law and switched off, kept for its outputs (the tip's state in the surface frame), and
+:func:`add_compiled_tip_contact` computes the contact on a curved analytic surface.
 
 The approximate fast path (``"exudyn-builtin"``) uses Exudyn's own ``ObjectContactSphereTriangle``
 against one triangle covering the plane, with the law's nearest parameters
@@ -75,7 +75,8 @@ def contact_user_function(
     ``surface`` (default: the plane).
 
     ``law.backend`` chooses how: ``"paper-symbolic"`` (and ``"paper-compiled"``, whose
-    connector keeps it for its outputs) records the law into a C++ expression tree (keep
+    connector is switched off and kept for its outputs) records the law into a C++
+    expression tree (keep
     the returned object alive as long as ``mbs`` runs); ``"paper-python"`` returns the
     plain Python function.
 
@@ -147,8 +148,9 @@ def add_compiled_tip_contact(mbs, connector, tip_node, surface: Surface, law: Co
     """Let an ``ObjectGenericODE2`` on the tip node (Euler parameters) carry the contact
     with the compiled law and its own Jacobian (exubrush.contact.surface_kernel), and
     switch ``connector`` (the symbolic law's, made by :func:`add_tip_contact`) off: it stays
-    for its outputs (the tip's state in the surface frame for the lagged drop, the contact
-    force for the sensors), which Exudyn still evaluates.
+    for its outputs (the tip's state in the surface frame, which the lagged drop reads and
+    Exudyn still evaluates); the contact force is the object's (its Force output, minus
+    the generalized force).
 
     Returns (the object, the drop ratios it reads: 1 to start with where ``lagged``, which
     :func:`lagged_drop_hook` keeps up to date; else −1, the implicit law; the user

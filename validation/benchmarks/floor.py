@@ -27,7 +27,7 @@ def floor_group(prepared: PreparedCase, selection: tuple[int, ...]) -> dict:
     scene = build_scene(prepared, selection)
     for contact in scene.contacts:
         scene.mbs.SetObjectParameter(contact, "activeConnector", False)
-    for compiled in scene.compiled_contacts.values():  # contact.backend "paper-compiled"
+    for compiled, _ in scene.compiled_contacts.values():  # contact.backend "paper-compiled"
         scene.mbs.SetObjectParameter(compiled, "forceUserFunction", 0)
         scene.mbs.SetObjectParameter(compiled, "jacobianUserFunction", 0)
     settings = group_settings(prepared, scene, selection)
