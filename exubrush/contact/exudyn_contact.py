@@ -211,7 +211,7 @@ def lagged_drop_hook(contacts: list, law: ContactLaw, surface: Surface | None,
     the user function's arguments (tests/integration/test_contact_connector.py). The offset is
     only written when a ratio changes (it stays at 1 or μ_d/μ_s through a stick or a
     slide). ``compiled``: connector -> the drop-ratio array a compiled contact reads
-    (:func:`add_compiled_tip_contact`), written with the offset.
+    (:func:`add_compiled_tip_contact`), written instead of the offset.
     """
     compiled = compiled or {}
     velocity_output = exu.OutputVariableType.VelocityLocal
@@ -229,10 +229,11 @@ def lagged_drop_hook(contacts: list, law: ContactLaw, surface: Surface | None,
                                  mbs.GetObjectOutput(contact, omega_output))
             if ratios != last[k]:
                 last[k] = ratios
-                padded = ratios + [1.0] * (OFFSET_SIZE - len(ratios))
-                mbs.SetObjectParameter(contact, "offset", padded)
-                if contact in compiled:
+                if contact in compiled:  # its connector is switched off: nothing reads it
                     compiled[contact][:len(ratios)] = ratios
+                else:
+                    padded = ratios + [1.0] * (OFFSET_SIZE - len(ratios))
+                    mbs.SetObjectParameter(contact, "offset", padded)
 
     return set_drops
 
