@@ -37,7 +37,7 @@ from exubrush.motion import HeadMotion
 from exubrush.parameters.case import COMPILED_SURFACES
 from exubrush.prepared import PreparedCase
 from exubrush.solver import fresh_jacobian_after_step_change, linear_solver, step_cap
-from exubrush.surfaces import orientation, tooth_pitch
+from exubrush.surfaces import flat_top_clearance, orientation, tooth_pitch
 
 if TYPE_CHECKING:
     from exubrush.contact.exudyn_between import BristleContact
@@ -49,8 +49,11 @@ HANDLE_SIZE = (20.0, 8.0, 3.0)  # mm
 HANDLE_DENSITY = 1.2e-9  # t/mm³ (acrylic-like)
 BUILTIN_FORCE_SIGN = 1.0
 # surfaces on which the middle of a stroke is steady sliding; on a tooth row (or a mesh,
-# which may be one) tips snap off edges into gaps there, so the step stays step_size
+# which may be one) tips snap off edges into gaps there
 SMOOTH_SURFACES = ("plane", "cylinder", "sphere")
+# where the step may grow in the middle of a stroke: on a tooth row only while every tip
+# is over a tooth's flat top (_tips_on_flat_tops); a mesh keeps step_size
+LARGER_STEP_SURFACES = (*SMOOTH_SURFACES, "tooth-row")
 # the larger steps also need the slide at this multiple of the tip law's v_d or faster:
 # where the tips' slip enters the Stribeck band (below v_d) Newton's trouble starts; the
 # default fraction 0.3 of the paper's 7.85 mm/s is 1.57 v_d
@@ -329,6 +332,7 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
     laws = {}
     origin = (0.0, 0.0, prepared.start_height)
     polylines = []
+    tips = []  # (node, sphere radius) of the tips that reach the surface
     for index, bristle in enumerate(bristles):
         if case.model.kind == "dfm":
             items = add_dfm_bristle(mbs, handle["bodyNumber"], bristle, bristle.material,
@@ -346,6 +350,7 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
             for n in items.nodes
         ])
         if prepared.reaching[indices[index]]:
+            tips.append((items.nodes[-1], bristle.tip_radius))
             planes = len(scene.tangent_planes)
             contact = _add_contact(scene, prepared, surface, items.tip_body, items.nodes[-1],
                                    bristle, laws)
@@ -393,13 +398,20 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
         scene.step_hooks.append(fresh_jacobian_after_step_change())
     sliding_step = min(case.solver.sliding_step_factor * case.solver.step_size,
                        case.output.interval)
-    if (scene.bristle_contact is None and case.surface.kind in SMOOTH_SURFACES
+    if (scene.bristle_contact is None and case.surface.kind in LARGER_STEP_SURFACES
             and sliding_step > case.solver.step_size):
         # above the friction law's Stribeck band with a margin, whatever the peak speed
         speed = max(case.solver.sliding_speed_fraction * scene.motion.slide.peak_speed,
                     STRIBECK_MARGIN * case.contact.dynamic_velocity)
+        clear = None
+        if case.surface.kind == "tooth-row":
+            # the tips' travel until a lower cap takes hold: the larger steps go on for up
+            # to solver.step_recovery_steps steps after it drops (step_cap), and two more
+            travel = ((case.solver.step_recovery_steps + 2) * sliding_step
+                      * scene.motion.slide.peak_speed)
+            clear = _tips_on_flat_tops(case.surface, tips, travel)
         scene.step_hooks.append(_sliding_step_cap(scene.motion, case.solver.step_size,
-                                                  sliding_step, speed))
+                                                  sliding_step, speed, clear))
     mbs.Assemble()
     if scene.bristle_contact is not None:
         from exubrush.contact.exudyn_between import locate_in_system
@@ -409,19 +421,39 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
 
 
 def _sliding_step_cap(motion: HeadMotion, step_size: float, sliding_step: float,
-                      speed: float):
+                      speed: float, clear=None):
     """Step hook letting the step grow from ``step_size`` to ``sliding_step`` [s] while the
-    head slides at ``speed`` [mm/s] or faster, now and two large steps ahead
-    (docs/model.md, "Steps in the middle of a stroke"). Only on :data:`SMOOTH_SURFACES`,
-    and not for groups of bristles that touch each other: their broad phase is sized for
-    ``step_size``."""
+    head slides at ``speed`` [mm/s] or faster, now and two large steps ahead, and
+    ``clear(mbs)`` holds if given (docs/model.md, "Steps in the middle of a stroke"). Only
+    on :data:`LARGER_STEP_SURFACES`, and not for groups of bristles that touch each other:
+    their broad phase is sized for ``step_size``."""
     ahead = 2.0 * sliding_step
 
-    def fast(t):
+    def fast(mbs, t):
         return (motion.sliding_faster_than(t, speed)
-                and motion.sliding_faster_than(t + ahead, speed))
+                and motion.sliding_faster_than(t + ahead, speed)
+                and (clear is None or clear(mbs)))
 
     return step_cap(step_size, sliding_step, fast)
+
+
+def _tips_on_flat_tops(surface, tips: list, travel: float):
+    """``clear(mbs)`` for :func:`_sliding_step_cap` on a tooth row: whether every tip
+    (node, sphere radius [mm]) lies over the flat part of a tooth top, at least ``travel``
+    plus its radius [mm] along the row from the rounded edges (so that no large step
+    carries it onto an edge or into a gap; exubrush.surfaces.flat_top_clearance)."""
+    cosine, sine = np.cos(surface.yaw), np.sin(surface.yaw)
+    position = exu.OutputVariableType.Position
+
+    def clear(mbs):
+        for node, radius in tips:
+            x, y, z = mbs.GetNodeOutput(node, position)
+            along = cosine * (x - surface.x) + sine * (y - surface.y)
+            if flat_top_clearance(surface, along, z) < travel + radius:
+                return False
+        return True
+
+    return clear
 
 
 def _polyline(bristle: BristleGeometry, nodes, gamma: float | None) -> list:

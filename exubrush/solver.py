@@ -124,7 +124,7 @@ def fresh_jacobian_after_step_change():
 
 def step_cap(step_size: float, larger_step: float, larger_allowed):
     """Pre-step hook (mbs, t) that sets Exudyn's largest step: ``larger_step`` [s] where
-    ``larger_allowed(t)`` holds, else ``step_size`` [s].
+    ``larger_allowed(mbs, t)`` holds, else ``step_size`` [s].
 
     Exudyn calls the hook with t at the end of the step it is about to try, whose size is
     fixed by then: a new cap applies from the next step on. A larger cap lets the step
@@ -138,7 +138,7 @@ def step_cap(step_size: float, larger_step: float, larger_allowed):
     def cap(mbs, t):
         solver = mbs.sys.get("dynamicSolver")
         if solver is not None:
-            largest = larger_step if larger_allowed(t) else step_size
+            largest = larger_step if larger_allowed(mbs, t) else step_size
             # Exudyn sets maxStepSize only when a solve starts: an unchanged cap is not set
             # again (~0.6 µs a step)
             if solver is not last[0] or largest != last[1]:

@@ -33,6 +33,7 @@ Features of each kind, in the surface frame:
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -123,6 +124,17 @@ def fold(surface: Surface, x, m=FLOAT_MATH):
     """x relative to the nearest tooth's centre, in [−P/2, P/2) [mm]."""
     pitch = tooth_pitch(surface)
     return x - pitch * m.floor(x / pitch + 0.5)
+
+
+def flat_top_clearance(surface: Surface, x: float, z: float) -> float:
+    """Tooth row: how far [mm] the point (x, z) of the surface frame (a tip sphere's
+    centre) can move along the row before it leaves the flat part of the tooth top under
+    it, where the closest feature is the top plane (the edges' rounding begins at
+    w/2 − ρ from the tooth's centre); negative beyond it, and −inf below the tops (z < 0:
+    in a gap)."""
+    if z < 0.0:
+        return -math.inf
+    return 0.5 * surface.tooth_width - surface.edge_radius - abs(float(fold(surface, x)))
 
 
 def _tooth_row_features(surface: Surface, x, z, radius, m) -> list:

@@ -472,9 +472,10 @@ class Solver(Parameters):
                              "s", "ms", above=0.0)
     sliding_step_factor: float = param(
         5.0, "while the head slides at sliding_speed_fraction of its peak speed or faster "
-             "over a plane, cylinder or sphere, the step may grow to this multiple of "
-             "step_size, at most output.interval (1: step_size throughout; docs/model.md, "
-             "'Steps in the middle of a stroke')", minimum=1.0, below=100.0,
+             "over a plane, cylinder or sphere (a tooth row: with every tip over a flat top), "
+             "the step may grow to this multiple of step_size, at most output.interval (1: "
+             "step_size throughout; docs/model.md, 'Steps in the middle of a stroke')",
+        minimum=1.0, below=100.0,
     )
     sliding_speed_fraction: float = param(
         0.3, "the head slides 'in the middle of a stroke' (sliding_step_factor) at this "

@@ -3,9 +3,10 @@
 import numpy as np
 import pytest
 
+from exubrush.parameters.case import Surface
 from exubrush.parameters.io import load_case
 from exubrush.prepared import prepare
-from exubrush.scene import build_scene
+from exubrush.scene import _tips_on_flat_tops, build_scene
 from exubrush.simulation import simulate
 
 ONE_BRISTLE = ["head.rows=1", "head.columns=1", "motion.periods=0.25"]
@@ -41,15 +42,53 @@ def test_the_middle_of_a_stroke_takes_fewer_steps_at_the_same_forces():
 @pytest.mark.parametrize(("overrides", "capped"), [
     ([], True),
     (["solver.sliding_step_factor=1"], False),
-    # a tooth row: tips snap off edges in the middle of a stroke
-    (["surface.kind='tooth-row'"], False),
+    # a tooth row: only while the tips are over flat tops (next test)
+    (["surface.kind='tooth-row'"], True),
+    # a mesh may have edges anywhere
+    (["surface.kind='mesh'", "surface.mesh_file='plane.stl'"], False),
 ])
-def test_the_step_grows_only_over_smooth_surfaces(overrides, capped):
+def test_the_step_grows_only_where_the_surface_allows(overrides, capped, tmp_path,
+                                                       monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    _write_plane_mesh(tmp_path / "plane.stl")
     prepared = prepare(load_case("orthogonal", [*ONE_BRISTLE, *overrides]))
     scene = build_scene(prepared, (0,))
     held = build_scene(prepare(load_case("orthogonal", [
         *ONE_BRISTLE, *overrides, "solver.sliding_step_factor=1"])), (0,))
     assert len(scene.step_hooks) == len(held.step_hooks) + capped
+
+
+def _write_plane_mesh(path):
+    import trimesh
+
+    box = trimesh.creation.box(extents=[60.0, 60.0, 2.0])
+    box.apply_translation([0.0, 0.0, -1.0])  # its top face at z = 0
+    box.export(path)
+
+
+class _Tips:
+    """Stands in for the system: the tips' positions [mm], head frame."""
+
+    def __init__(self, positions):
+        self.positions = positions
+
+    def GetNodeOutput(self, node, variable):
+        return self.positions[node]
+
+
+def test_on_a_tooth_row_the_step_grows_only_with_every_tip_over_a_flat_top():
+    # the row runs along the head's y, a tooth centred at y = 1 mm, its flat top's part
+    # 3 mm either side; the tips need 0.3 mm of travel and their radius 0.2 mm
+    row = Surface(kind="tooth-row", tooth_width=7.0, gap_width=1.0, edge_radius=0.5,
+                  y=1.0, yaw=np.pi / 2)
+    clear = _tips_on_flat_tops(row, [(0, 0.2), (1, 0.2)], travel=0.3)
+    centre = [5.0, 1.0, 0.3]  # x across the row does not matter
+    assert clear(_Tips([centre, [0.0, 3.4, 0.3]]))  # 0.6 mm of the flat part left
+    assert clear(_Tips([centre, [0.0, -1.4, 0.3]]))  # the same on the other side
+    assert not clear(_Tips([centre, [0.0, 3.6, 0.3]]))  # 0.4 mm: < travel + radius
+    assert not clear(_Tips([centre, [0.0, 5.0, 0.3]]))  # over the gap
+    assert not clear(_Tips([centre, [0.0, 1.0, -0.3]]))  # below the tops
+    assert not clear(_Tips([[0.0, -3.6, 0.3], centre]))  # the first tip decides too
 
 
 def test_a_slide_slower_than_the_stribeck_margin_keeps_the_step():

@@ -14,6 +14,7 @@ from exubrush.surfaces import (
     Choice,
     Feature,
     features,
+    flat_top_clearance,
     fold,
     height,
     orientation,
@@ -162,6 +163,24 @@ def test_taken_gives_the_feature_resolve_gives_on_floats(gap):
     for x, z in rng.uniform([-4.0, -1.2], [4.0, 0.6], size=(300, 2)):
         for feature in features(row, (x, 0.0, z), 0.4):
             assert taken(feature) == resolve(feature)
+
+
+def test_flat_top_clearance_is_where_the_top_plane_is_the_closest_feature():
+    rng = np.random.default_rng(3)
+    top = (0.0, 0.0, 1.0)
+    for x, z in rng.uniform([-12.0, -1.0], [12.0, 0.8], size=(2000, 2)):
+        clearance = flat_top_clearance(TEETH, x, z)
+        nearest = taken(features(TEETH, (x, 0.0, z), 0.1)[0])
+        if clearance > 0.0:  # over the flat part of a top: the top plane, at height z
+            assert nearest.normal == top and nearest.distance == z
+        elif z >= 0.0:  # above a rounding or a gap: a rounding's normal leans over
+            assert nearest.normal != top
+        # moving by the clearance along the row reaches the rounding's start (or a point
+        # of the other side, symmetric)
+        if 0.0 < clearance < 3.0:
+            edge = abs(fold(TEETH, x)) + clearance
+            assert edge == pytest.approx(0.5 * TEETH.tooth_width - TEETH.edge_radius)
+    assert flat_top_clearance(TEETH, 0.0, -0.1) == -math.inf  # below the tops: in a gap
 
 
 def test_placement_turns_and_shifts_into_the_surface_frame():
