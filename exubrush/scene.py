@@ -49,7 +49,8 @@ HANDLE_SIZE = (20.0, 8.0, 3.0)  # mm
 HANDLE_DENSITY = 1.2e-9  # t/mm³ (acrylic-like)
 BUILTIN_FORCE_SIGN = 1.0
 # surfaces on which the middle of a stroke is steady sliding; on a tooth row (or a mesh,
-# which may be one) tips snap off edges into gaps there
+# which may be one) tips snap off edges into gaps there, except over the flat part of a
+# tooth top (_tips_on_flat_tops)
 SMOOTH_SURFACES = ("plane", "cylinder", "sphere")
 # where the step may grow in the middle of a stroke: on a tooth row only while every tip
 # is over a tooth's flat top (_tips_on_flat_tops); a mesh keeps step_size
@@ -405,11 +406,12 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
                     STRIBECK_MARGIN * case.contact.dynamic_velocity)
         clear = None
         if case.surface.kind == "tooth-row":
-            # the tips' travel until a lower cap takes hold: the larger steps go on for up
-            # to solver.step_recovery_steps steps after it drops (step_cap), and two more
-            travel = ((case.solver.step_recovery_steps + 2) * sliding_step
-                      * scene.motion.slide.peak_speed)
-            clear = _tips_on_flat_tops(case.surface, tips, travel)
+            # the time a tip travels until a lower cap takes hold: the larger steps go on
+            # for up to solver.step_recovery_steps + 1 steps after it drops (step_cap), and
+            # one more
+            ahead = (case.solver.step_recovery_steps + 2) * sliding_step
+            clear = _tips_on_flat_tops(case.surface, tips, ahead,
+                                       scene.motion.slide.peak_speed)
         scene.step_hooks.append(_sliding_step_cap(scene.motion, case.solver.step_size,
                                                   sliding_step, speed, clear))
     mbs.Assemble()
@@ -437,19 +439,26 @@ def _sliding_step_cap(motion: HeadMotion, step_size: float, sliding_step: float,
     return step_cap(step_size, sliding_step, fast)
 
 
-def _tips_on_flat_tops(surface, tips: list, travel: float):
+def _tips_on_flat_tops(surface, tips: list, ahead: float, speed: float):
     """``clear(mbs)`` for :func:`_sliding_step_cap` on a tooth row: whether every tip
-    (node, sphere radius [mm]) lies over the flat part of a tooth top, at least ``travel``
-    plus its radius [mm] along the row from the rounded edges (so that no large step
-    carries it onto an edge or into a gap; exubrush.surfaces.flat_top_clearance)."""
+    (node, sphere radius [mm]) lies over the flat part of a tooth top with room along the
+    row, before the rounded edges begin, for its radius and its travel over ``ahead`` [s]
+    at ``speed`` (the head's peak [mm/s]) or at its own speed along the row if faster (so
+    that no large step carries it onto an edge or into a gap;
+    exubrush.surfaces.flat_top_clearance)."""
     cosine, sine = np.cos(surface.yaw), np.sin(surface.yaw)
     position = exu.OutputVariableType.Position
+    velocity = exu.OutputVariableType.Velocity
 
     def clear(mbs):
         for node, radius in tips:
             x, y, z = mbs.GetNodeOutput(node, position)
-            along = cosine * (x - surface.x) + sine * (y - surface.y)
-            if flat_top_clearance(surface, along, z) < travel + radius:
+            room = flat_top_clearance(surface, cosine * (x - surface.x)
+                                      + sine * (y - surface.y), z) - radius
+            if room < ahead * speed:
+                return False
+            vx, vy, _ = mbs.GetNodeOutput(node, velocity)
+            if room < ahead * abs(cosine * vx + sine * vy):
                 return False
         return True
 

@@ -129,8 +129,12 @@ def step_cap(step_size: float, larger_step: float, larger_allowed):
     Exudyn calls the hook with t at the end of the step it is about to try, whose size is
     fixed by then: a new cap applies from the next step on. A larger cap lets the step
     double towards it after ``solver.step_recovery_steps`` good steps; a smaller one takes
-    the step down to it at the next such point (or at the next failed try, which cuts it
-    by ``solver.step_cut``), so ``larger_allowed`` should look ahead by a few large steps.
+    the step down to it at the next such point, at most ``step_recovery_steps`` + 1 steps
+    on (or at the next failed try, which cuts it by ``solver.step_cut``), so
+    ``larger_allowed`` should look ahead by that many large steps. A good step is one that
+    converged within Exudyn's ``adaptiveStepRecoveryIterations`` (7) Newton iterations:
+    large steps that each take more but converge would keep the step large for longer;
+    in the middle of a stroke they take one or two.
     """
 
     last = [None, None]  # the solver and the cap last set on it

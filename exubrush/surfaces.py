@@ -130,8 +130,8 @@ def flat_top_clearance(surface: Surface, x: float, z: float) -> float:
     """Tooth row: how far [mm] the point (x, z) of the surface frame (a tip sphere's
     centre) can move along the row before it leaves the flat part of the tooth top under
     it, where the closest feature is the top plane (the edges' rounding begins at
-    w/2 − ρ from the tooth's centre); negative beyond it, and −inf below the tops (z < 0:
-    in a gap)."""
+    w/2 − ρ from the tooth's centre); negative beyond it (over a rounding or a gap), and
+    −inf for a centre below the tops (z < 0: inside a gap or a tooth)."""
     if z < 0.0:
         return -math.inf
     return 0.5 * surface.tooth_width - surface.edge_radius - abs(float(fold(surface, x)))

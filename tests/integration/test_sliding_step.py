@@ -1,5 +1,8 @@
 """Larger steps in the middle of a stroke (solver.sliding_step_factor, exubrush.scene)."""
 
+from types import SimpleNamespace
+
+import exudyn as exu
 import numpy as np
 import pytest
 
@@ -8,6 +11,7 @@ from exubrush.parameters.io import load_case
 from exubrush.prepared import prepare
 from exubrush.scene import _tips_on_flat_tops, build_scene
 from exubrush.simulation import simulate
+from exubrush.surfaces import orientation, to_surface_frame
 
 ONE_BRISTLE = ["head.rows=1", "head.columns=1", "motion.periods=0.25"]
 
@@ -67,28 +71,63 @@ def _write_plane_mesh(path):
 
 
 class _Tips:
-    """Stands in for the system: the tips' positions [mm], head frame."""
+    """Stands in for the system: the tips' positions [mm] and velocities [mm/s]."""
 
-    def __init__(self, positions):
+    def __init__(self, positions, velocities=None):
         self.positions = positions
+        self.velocities = velocities or [[0.0, 0.0, 0.0]] * len(positions)
 
     def GetNodeOutput(self, node, variable):
+        if variable == exu.OutputVariableType.Velocity:
+            return self.velocities[node]
         return self.positions[node]
 
 
 def test_on_a_tooth_row_the_step_grows_only_with_every_tip_over_a_flat_top():
-    # the row runs along the head's y, a tooth centred at y = 1 mm, its flat top's part
-    # 3 mm either side; the tips need 0.3 mm of travel and their radius 0.2 mm
+    # a placed and turned row; the tips are put at points of the row's own frame (along
+    # the row u, across v, height z), turned into the head frame by the row's placement
     row = Surface(kind="tooth-row", tooth_width=7.0, gap_width=1.0, edge_radius=0.5,
-                  y=1.0, yaw=np.pi / 2)
-    clear = _tips_on_flat_tops(row, [(0, 0.2), (1, 0.2)], travel=0.3)
-    centre = [5.0, 1.0, 0.3]  # x across the row does not matter
-    assert clear(_Tips([centre, [0.0, 3.4, 0.3]]))  # 0.6 mm of the flat part left
-    assert clear(_Tips([centre, [0.0, -1.4, 0.3]]))  # the same on the other side
-    assert not clear(_Tips([centre, [0.0, 3.6, 0.3]]))  # 0.4 mm: < travel + radius
-    assert not clear(_Tips([centre, [0.0, 5.0, 0.3]]))  # over the gap
-    assert not clear(_Tips([centre, [0.0, 1.0, -0.3]]))  # below the tops
-    assert not clear(_Tips([[0.0, -3.6, 0.3], centre]))  # the first tip decides too
+                  x=1.5, y=-2.0, yaw=0.7)
+
+    def head(u, v, z):
+        return (np.array([row.x, row.y, 0.0]) + orientation(row) @ [u, v, z]).tolist()
+
+    assert np.allclose(to_surface_frame(row, head(2.0, 1.0, 0.3)), [2.0, 1.0, 0.3])
+    # the flat part of a top ends 3 mm from the tooth's centre; a radius of 0.2 mm and
+    # 0.3 mm of travel (0.1 s at 3 mm/s) leave 2.5 mm either side
+    clear = _tips_on_flat_tops(row, [(0, 0.2), (1, 0.2)], ahead=0.1, speed=3.0)
+    centre = head(0.0, 5.0, 0.3)  # across the row does not matter
+    assert clear(_Tips([centre, head(2.4, -3.0, 0.3)]))
+    assert clear(_Tips([centre, head(-2.4, 0.0, 0.3)]))  # the other side
+    assert clear(_Tips([centre, head(8.0 + 2.4, 0.0, 0.3)]))  # the next tooth
+    assert not clear(_Tips([centre, head(2.6, 0.0, 0.3)]))  # 2.6 mm: too close
+    assert not clear(_Tips([centre, head(4.0, 0.0, 0.3)]))  # over the gap
+    assert not clear(_Tips([centre, head(0.0, 0.0, -0.3)]))  # below the tops
+    assert not clear(_Tips([head(-2.6, 0.0, 0.3), centre]))  # the first tip decides too
+    # a tip moving along the row at 10 mm/s needs 1 mm of travel: not at 2.4 mm
+    along = (orientation(row) @ [10.0, 0.0, 0.0]).tolist()
+    assert not clear(_Tips([centre, head(2.4, 0.0, 0.3)], [[0.0, 0.0, 0.0], along]))
+    assert clear(_Tips([centre, head(1.5, 0.0, 0.3)], [[0.0, 0.0, 0.0], along]))
+
+
+def _cap_in_a_stroke(surface_x: float) -> float:
+    """The step cap the tooth row's scene sets in the middle of a stroke, with its one tip
+    at rest where the reference state has it (over a top with the row at x = 0)."""
+    prepared = prepare(load_case("orthogonal", [
+        *ONE_BRISTLE, "surface.kind='tooth-row'", f"surface.x='{surface_x} mm'"]))
+    scene = build_scene(prepared, (0,))
+    iteration = SimpleNamespace(maxStepSize=0.0)
+    scene.mbs.sys["dynamicSolver"] = SimpleNamespace(it=iteration)
+    scene.step_hooks[-1](scene.mbs, scene.motion.slide_start + 0.1)
+    return iteration.maxStepSize
+
+
+def test_the_tooth_row_scene_caps_the_step_by_where_its_tips_are():
+    case = load_case("orthogonal", ONE_BRISTLE)
+    large = min(case.solver.sliding_step_factor * case.solver.step_size,
+                case.output.interval)
+    assert _cap_in_a_stroke(0.0) == large  # the tip over a top's middle
+    assert _cap_in_a_stroke(-4.0) == case.solver.step_size  # the tip over a gap
 
 
 def test_a_slide_slower_than_the_stribeck_margin_keeps_the_step():

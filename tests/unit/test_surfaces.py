@@ -175,12 +175,13 @@ def test_flat_top_clearance_is_where_the_top_plane_is_the_closest_feature():
             assert nearest.normal == top and nearest.distance == z
         elif z >= 0.0:  # above a rounding or a gap: a rounding's normal leans over
             assert nearest.normal != top
-        # moving by the clearance along the row reaches the rounding's start (or a point
-        # of the other side, symmetric)
-        if 0.0 < clearance < 3.0:
-            edge = abs(fold(TEETH, x)) + clearance
-            assert edge == pytest.approx(0.5 * TEETH.tooth_width - TEETH.edge_radius)
-    assert flat_top_clearance(TEETH, 0.0, -0.1) == -math.inf  # below the tops: in a gap
+        # the top's height (its own formula) stays 0 for the clearance, outwards, and
+        # falls just beyond it
+        if clearance > 0.0:
+            outwards = 1.0 if fold(TEETH, x) >= 0.0 else -1.0
+            assert height(TEETH, x + outwards * 0.999 * clearance, 0.0) == 0.0
+            assert height(TEETH, x + outwards * (clearance + 0.01), 0.0) < 0.0
+    assert flat_top_clearance(TEETH, 0.0, -0.1) == -math.inf  # a centre below the tops
 
 
 def test_placement_turns_and_shifts_into_the_surface_frame():
