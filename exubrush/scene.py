@@ -48,13 +48,11 @@ if TYPE_CHECKING:
 HANDLE_SIZE = (20.0, 8.0, 3.0)  # mm
 HANDLE_DENSITY = 1.2e-9  # t/mm³ (acrylic-like)
 BUILTIN_FORCE_SIGN = 1.0
-# surfaces on which the middle of a stroke is steady sliding; on a tooth row (or a mesh,
-# which may be one) tips snap off edges into gaps there, except over the flat part of a
-# tooth top (_tips_on_flat_tops)
-SMOOTH_SURFACES = ("plane", "cylinder", "sphere")
-# where the step may grow in the middle of a stroke: on a tooth row only while every tip
-# is over a tooth's flat top (_tips_on_flat_tops); a mesh keeps step_size
-LARGER_STEP_SURFACES = (*SMOOTH_SURFACES, "tooth-row")
+# where the step may grow in the middle of a stroke, which is steady sliding on a plane,
+# cylinder or sphere; on a tooth row tips snap off edges into gaps, so there only while
+# every tip is over a tooth's flat top (_tips_on_flat_tops); a mesh (which may be a tooth
+# row) keeps step_size
+LARGER_STEP_SURFACES = ("plane", "cylinder", "sphere", "tooth-row")
 # the larger steps also need the slide at this multiple of the tip law's v_d or faster:
 # where the tips' slip enters the Stribeck band (below v_d) Newton's trouble starts; the
 # default fraction 0.3 of the paper's 7.85 mm/s is 1.57 v_d
@@ -446,6 +444,8 @@ def _tips_on_flat_tops(surface, tips: list, ahead: float, speed: float):
     at ``speed`` (the head's peak [mm/s]) or at its own speed along the row if faster (so
     that no large step carries it onto an edge or into a gap;
     exubrush.surfaces.flat_top_clearance)."""
+    # the along-row coordinate of exubrush.surfaces.to_surface_frame, in plain arithmetic:
+    # this runs for every tip and step
     cosine, sine = np.cos(surface.yaw), np.sin(surface.yaw)
     position = exu.OutputVariableType.Position
     velocity = exu.OutputVariableType.Velocity

@@ -134,7 +134,7 @@ def flat_top_clearance(surface: Surface, x: float, z: float) -> float:
     −inf for a centre below the tops (z < 0: inside a gap or a tooth)."""
     if z < 0.0:
         return -math.inf
-    return 0.5 * surface.tooth_width - surface.edge_radius - abs(float(fold(surface, x)))
+    return 0.5 * surface.tooth_width - surface.edge_radius - abs(fold(surface, x))
 
 
 def _tooth_row_features(surface: Surface, x, z, radius, m) -> list:
