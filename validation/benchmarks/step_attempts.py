@@ -1,0 +1,136 @@
+"""Step attempts of one bristle's solve: how many failed, and what they cost.
+
+    python validation/benchmarks/step_attempts.py [--case interdental] [--model dfm|prb]
+        [--periods 1] [--bristle 23] [--bins 0.5] [--set KEY=VALUE ...]
+
+Builds one bristle of the case's head as exubrush does and solves it in this process
+(Exudyn's fast core), reading the solver's counters before every step attempt: Exudyn
+calls the pre-step function before each attempt, a retry after a failed Newton solve
+included, and a retry starts where the failed attempt started. Prints the attempts, the
+failed ones, and the Newton iterations and Jacobians spent in failed and in accepted
+attempts; with ``--bins`` the same per interval of simulated time [s] (where in the
+stroke the Jacobians go). With ``--watch T0 T1`` it also prints, for every Newton iteration
+of the attempts that end between T0 and T1 [s], the residual of the iteration before and the
+tip's penetration [mm], normal speed [mm/s] and slip [mm/s] on each surface feature it
+touches (analytic surfaces). validation/benchmarks/README.md, "Where a snap's Jacobians
+go".
+"""
+
+from __future__ import annotations
+
+import argparse
+import time
+
+import numpy as np
+
+from exubrush.contact.laws import feature_slip
+from exubrush.parameters.io import load_case
+from exubrush.prepared import prepare
+from exubrush.scene import build_scene
+from exubrush.solve import group_settings, solver_statistics
+from exubrush.surfaces import features, taken
+
+
+def record_attempts(scene) -> list:
+    """Set ``scene``'s pre-step function to its step hooks behind a recorder; return the
+    list it fills with (t at the attempt's end, t at its start, Jacobians so far, Newton
+    iterations so far), one row per attempt."""
+    import exudyn as exu  # here: exubrush, imported first, chooses Exudyn's fast core
+
+    rows = []
+    start = exu.ConfigurationType.StartOfStep
+
+    def recorded(mbs, t):
+        counters = mbs.sys["dynamicSolver"].it
+        rows.append((t, mbs.systemData.GetTime(start), counters.newtonJacobiCount,
+                     counters.newtonStepsCount))
+        return scene.run_step_hooks(mbs, t)
+
+    scene.mbs.SetPreStepUserFunction(recorded)
+    return rows
+
+
+def watch_newton(scene, surface, window: tuple[float, float]) -> None:
+    """Print the tip's contact state at every Newton iteration of the attempts whose end
+    time lies in ``window`` [s] (Exudyn calls the pre-residual function with the iterate
+    in place, before each residual)."""
+    import exudyn as exu
+
+    output = exu.OutputVariableType
+    contact, radius = scene.contacts[0], scene.lagged_contacts[0][1]
+
+    def show(mbs, t, iteration, _discontinuous):
+        if not window[0] <= t <= window[1]:
+            return
+        solver = mbs.sys["dynamicSolver"]
+        centre = mbs.GetObjectOutput(contact, output.DisplacementLocal)
+        velocity = mbs.GetObjectOutput(contact, output.VelocityLocal)
+        omega = mbs.GetObjectOutput(contact, output.AngularVelocityLocal)
+        touching = []
+        for feature in features(surface, centre, radius):
+            feature = taken(feature)
+            if feature.distance < radius:
+                normal_speed, slip = feature_slip(radius, feature.normal, velocity, omega)
+                touching.append(f"depth {radius - feature.distance:.5f} normal speed "
+                                f"{normal_speed:.0f} slip {np.round(slip, 1)}")
+        print(f"t {t:.9f} h {solver.it.currentStepSize:.2e} iteration {iteration:2d} "
+              f"residual before {solver.conv.residual:.3g}: {'; '.join(touching) or '-'}")
+
+    scene.mbs.SetPreNewtonResidualUserFunction(show)
+
+
+def attempt_costs(rows: list, final_jacobians: int, final_iterations: int):
+    """Per attempt: (its end time [s], failed?, Jacobians, Newton iterations) as arrays.
+
+    An attempt failed if the next one starts at the same time (a retry); its cost is the
+    counters' growth up to the next attempt (the last one's: up to the solve's end)."""
+    table = np.array(rows, dtype=float)
+    ends = np.append(table[:, 2:], [[final_jacobians, final_iterations]], axis=0)
+    costs = np.diff(ends, axis=0)
+    failed = np.append(table[1:, 1] == table[:-1, 1], False)
+    return table[:, 0], failed, costs[:, 0], costs[:, 1]
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--case", default="interdental")
+    parser.add_argument("--model", default="dfm", choices=["dfm", "prb"])
+    parser.add_argument("--periods", type=float, default=1.0)
+    parser.add_argument("--bristle", type=int, default=23, help="index in the head")
+    parser.add_argument("--bins", type=float, default=0.0,
+                        help="also tabulate per interval of simulated time [s]")
+    parser.add_argument("--watch", type=float, nargs=2, metavar=("T0", "T1"),
+                        help="print each Newton iterate's tip contact between these times [s]")
+    parser.add_argument("--set", dest="overrides", action="append", default=[],
+                        metavar="KEY=VALUE")
+    args = parser.parse_args()
+    case = load_case(args.case, [f"model.kind='{args.model}'",
+                                 f"motion.periods={args.periods:g}", *args.overrides])
+    prepared = prepare(case)
+    scene = build_scene(prepared, (args.bristle,))
+    settings = group_settings(prepared, scene, (args.bristle,))
+    rows = record_attempts(scene)
+    if args.watch:
+        watch_newton(scene, case.surface, tuple(args.watch))
+    clock = time.perf_counter()
+    scene.mbs.SolveDynamic(settings)
+    wall = time.perf_counter() - clock
+    statistics = solver_statistics(scene.mbs)
+    ends, failed, jacobians, iterations = attempt_costs(
+        rows, statistics.jacobian_updates, statistics.newton_iterations)
+    print(f"wall {wall:.3f} s, {statistics}")
+    print(f"attempts {len(ends)}, failed {int(failed.sum())}")
+    for label, mask in (("failed", failed), ("accepted", ~failed)):
+        print(f"  {label:8s}: Jacobians {int(jacobians[mask].sum()):6d}, "
+              f"Newton iterations {int(iterations[mask].sum()):7d}")
+    if args.bins > 0.0:
+        print(f"{'from [s]':>9s} {'attempts':>9s} {'failed':>7s} {'Jacobians':>10s}")
+        which = np.floor(ends / args.bins).astype(int)
+        for b in range(which.max() + 1):
+            mask = which == b
+            print(f"{b * args.bins:9.2f} {int(mask.sum()):9d} {int(failed[mask].sum()):7d} "
+                  f"{int(jacobians[mask].sum()):10d}")
+
+
+if __name__ == "__main__":
+    main()
