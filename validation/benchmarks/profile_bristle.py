@@ -17,26 +17,15 @@ import time
 
 os.environ["EXUBRUSH_EXUDYN_CHECKS"] = "1"  # before exubrush chooses Exudyn's core
 
-from exubrush.parameters.io import load_case  # noqa: E402
-from exubrush.prepared import prepare  # noqa: E402
-from exubrush.scene import build_scene  # noqa: E402
-from exubrush.solve import group_settings, solver_statistics  # noqa: E402
+from one_bristle import add_arguments, build  # noqa: E402
+
+from exubrush.solve import solver_statistics  # noqa: E402
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--case", default="orthogonal")
-    parser.add_argument("--model", default="dfm", choices=["dfm", "prb"])
-    parser.add_argument("--periods", type=float, default=1.0)
-    parser.add_argument("--bristle", type=int, default=0, help="index in the head")
-    parser.add_argument("--set", dest="overrides", action="append", default=[],
-                        metavar="KEY=VALUE")
-    args = parser.parse_args()
-    case = load_case(args.case, [f"model.kind='{args.model}'",
-                                 f"motion.periods={args.periods:g}", *args.overrides])
-    prepared = prepare(case)
-    scene = build_scene(prepared, (args.bristle,))
-    settings = group_settings(prepared, scene, (args.bristle,))
+    add_arguments(parser, case="orthogonal", bristle=0)
+    _, scene, settings = build(parser.parse_args())
     settings.show.computationTime = True  # printed by Exudyn at the end of the solve
     settings.timeIntegration.verboseMode = 1
 

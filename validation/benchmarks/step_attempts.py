@@ -22,12 +22,10 @@ import argparse
 import time
 
 import numpy as np
+from one_bristle import add_arguments, build
 
 from exubrush.contact.laws import feature_slip
-from exubrush.parameters.io import load_case
-from exubrush.prepared import prepare
-from exubrush.scene import build_scene
-from exubrush.solve import group_settings, solver_statistics
+from exubrush.solve import solver_statistics
 from exubrush.surfaces import features, taken
 
 
@@ -93,22 +91,13 @@ def attempt_costs(rows: list, final_jacobians: int, final_iterations: int):
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--case", default="interdental")
-    parser.add_argument("--model", default="dfm", choices=["dfm", "prb"])
-    parser.add_argument("--periods", type=float, default=1.0)
-    parser.add_argument("--bristle", type=int, default=23, help="index in the head")
+    add_arguments(parser, case="interdental", bristle=23)
     parser.add_argument("--bins", type=float, default=0.0,
                         help="also tabulate per interval of simulated time [s]")
     parser.add_argument("--watch", type=float, nargs=2, metavar=("T0", "T1"),
                         help="print each Newton iterate's tip contact between these times [s]")
-    parser.add_argument("--set", dest="overrides", action="append", default=[],
-                        metavar="KEY=VALUE")
     args = parser.parse_args()
-    case = load_case(args.case, [f"model.kind='{args.model}'",
-                                 f"motion.periods={args.periods:g}", *args.overrides])
-    prepared = prepare(case)
-    scene = build_scene(prepared, (args.bristle,))
-    settings = group_settings(prepared, scene, (args.bristle,))
+    case, scene, settings = build(args)
     rows = record_attempts(scene)
     if args.watch:
         watch_newton(scene, case.surface, tuple(args.watch))

@@ -1,0 +1,32 @@
+"""One bristle of a case's head, built as exubrush builds it for a run: the command-line
+options and the system that the single-bristle scripts (profile_bristle.py,
+step_attempts.py) share. Import it after choosing Exudyn's core (it imports exubrush)."""
+
+from __future__ import annotations
+
+import argparse
+
+from exubrush.parameters.io import load_case
+from exubrush.prepared import prepare
+from exubrush.scene import build_scene
+from exubrush.solve import group_settings
+
+
+def add_arguments(parser: argparse.ArgumentParser, case: str, bristle: int) -> None:
+    """--case, --model, --periods, --bristle and --set, with these defaults."""
+    parser.add_argument("--case", default=case)
+    parser.add_argument("--model", default="dfm", choices=["dfm", "prb"])
+    parser.add_argument("--periods", type=float, default=1.0)
+    parser.add_argument("--bristle", type=int, default=bristle, help="index in the head")
+    parser.add_argument("--set", dest="overrides", action="append", default=[],
+                        metavar="KEY=VALUE")
+
+
+def build(args: argparse.Namespace):
+    """(the case, the bristle's scene, its Exudyn settings) for the parsed options; the
+    scene's pre-step function is not set yet."""
+    case = load_case(args.case, [f"model.kind='{args.model}'",
+                                 f"motion.periods={args.periods:g}", *args.overrides])
+    prepared = prepare(case)
+    scene = build_scene(prepared, (args.bristle,))
+    return case, scene, group_settings(prepared, scene, (args.bristle,))
