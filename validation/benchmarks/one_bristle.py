@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import argparse
 
+from exubrush.parameters.fields import ParameterError
 from exubrush.parameters.io import load_case
 from exubrush.prepared import prepare
 from exubrush.scene import build_scene
@@ -22,11 +23,18 @@ def add_arguments(parser: argparse.ArgumentParser, case: str, bristle: int) -> N
                         metavar="KEY=VALUE")
 
 
-def build(args: argparse.Namespace):
+def build(parser: argparse.ArgumentParser, args: argparse.Namespace):
     """(the case, the bristle's scene, its Exudyn settings) for the parsed options; the
-    scene's pre-step function is not set yet."""
-    case = load_case(args.case, [f"model.kind='{args.model}'",
-                                 f"motion.periods={args.periods:g}", *args.overrides])
-    prepared = prepare(case)
+    scene's pre-step function is not set yet. A bad case, override or bristle index ends
+    the script with the parser's one-line error (exit code 2)."""
+    try:
+        case = load_case(args.case, [f"model.kind='{args.model}'",
+                                     f"motion.periods={args.periods:g}", *args.overrides])
+        prepared = prepare(case)
+    except ParameterError as error:
+        parser.error(str(error))
+    count = len(prepared.bristles)
+    if not 0 <= args.bristle < count:
+        parser.error(f"--bristle {args.bristle}: the head has bristles 0 to {count - 1}")
     scene = build_scene(prepared, (args.bristle,))
     return case, scene, group_settings(prepared, scene, (args.bristle,))

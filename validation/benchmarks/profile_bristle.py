@@ -25,7 +25,7 @@ from exubrush.solve import solver_statistics  # noqa: E402
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     add_arguments(parser, case="orthogonal", bristle=0)
-    _, scene, settings = build(parser.parse_args())
+    _, scene, settings = build(parser, parser.parse_args())
     settings.show.computationTime = True  # printed by Exudyn at the end of the solve
     settings.timeIntegration.verboseMode = 1
 

@@ -97,7 +97,11 @@ def main() -> None:
     parser.add_argument("--watch", type=float, nargs=2, metavar=("T0", "T1"),
                         help="print each Newton iterate's tip contact between these times [s]")
     args = parser.parse_args()
-    case, scene, settings = build(args)
+    if args.bins < 0.0:
+        parser.error(f"--bins {args.bins:g}: give an interval > 0 s, or 0 for none")
+    if args.watch and args.watch[0] > args.watch[1]:
+        parser.error(f"--watch {args.watch[0]:g} {args.watch[1]:g}: T0 must not exceed T1")
+    case, scene, settings = build(parser, args)
     rows = record_attempts(scene)
     if args.watch:
         watch_newton(scene, case.surface, tuple(args.watch))
