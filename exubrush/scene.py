@@ -402,16 +402,15 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
         # above the friction law's Stribeck band with a margin, whatever the peak speed
         speed = max(case.solver.sliding_speed_fraction * scene.motion.slide.peak_speed,
                     STRIBECK_MARGIN * case.contact.dynamic_velocity)
+        # how long a lower cap may take to hold: the larger steps go on for up to
+        # solver.step_recovery_steps + 1 steps after it drops (step_cap), and one more
+        ahead = (case.solver.step_recovery_steps + 2) * sliding_step
         clear = None
         if case.surface.kind == "tooth-row":
-            # the time a tip travels until a lower cap takes hold: the larger steps go on
-            # for up to solver.step_recovery_steps + 1 steps after it drops (step_cap), and
-            # one more
-            ahead = (case.solver.step_recovery_steps + 2) * sliding_step
             clear = _tips_on_flat_tops(case.surface, tips, ahead,
                                        scene.motion.slide.peak_speed)
         scene.step_hooks.append(_sliding_step_cap(scene.motion, case.solver.step_size,
-                                                  sliding_step, speed, clear))
+                                                  sliding_step, speed, ahead, clear))
     mbs.Assemble()
     if scene.bristle_contact is not None:
         from exubrush.contact.exudyn_between import locate_in_system
@@ -421,13 +420,12 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
 
 
 def _sliding_step_cap(motion: HeadMotion, step_size: float, sliding_step: float,
-                      speed: float, clear=None):
+                      speed: float, ahead: float, clear=None):
     """Step hook letting the step grow from ``step_size`` to ``sliding_step`` [s] while the
-    head slides at ``speed`` [mm/s] or faster, now and two large steps ahead, and
-    ``clear(mbs)`` holds if given (docs/model.md, "Steps in the middle of a stroke"). Only
-    on :data:`LARGER_STEP_SURFACES`, and not for groups of bristles that touch each other:
-    their broad phase is sized for ``step_size``."""
-    ahead = 2.0 * sliding_step
+    head slides at ``speed`` [mm/s] or faster, now and ``ahead`` [s] on (the time a lower
+    cap may take to hold), and ``clear(mbs)`` holds if given (docs/model.md, "Steps in the
+    middle of a stroke"). Only on :data:`LARGER_STEP_SURFACES`, and not for groups of
+    bristles that touch each other: their broad phase is sized for ``step_size``."""
 
     def fast(mbs, t):
         return (motion.sliding_faster_than(t, speed)

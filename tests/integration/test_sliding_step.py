@@ -136,3 +136,27 @@ def test_a_slide_slower_than_the_stribeck_margin_keeps_the_step():
     steps = [_run(factor, "motion.amplitude='3 mm'").metadata["solver_statistics"]["steps"]
              for factor in (1, 5)]
     assert steps[0] == steps[1]
+
+
+def test_the_cap_drops_early_enough_for_the_step_to_follow_before_the_speed_falls():
+    case = load_case("orthogonal", ONE_BRISTLE)
+    scene = build_scene(prepare(case), (0,))
+    iteration = SimpleNamespace(maxStepSize=0.0)
+    scene.mbs.sys["dynamicSolver"] = SimpleNamespace(it=iteration)
+    large = min(case.solver.sliding_step_factor * case.solver.step_size,
+                case.output.interval)
+    # a lower cap holds at most step_recovery_steps + 1 steps after it is set
+    # (exubrush.solver.step_cap), and the step at which it is set is already fixed
+    lead = (case.solver.step_recovery_steps + 2) * large
+    # x = A sin(2π τ/T): the speed falls below the fraction f of its peak at
+    # τ = T/(2π) arccos(f), before the first reversal at T/4 (0.3 of the paper's 7.85 mm/s
+    # is above the Stribeck margin 1.5 v_d, so f is the fraction)
+    fraction, period = case.solver.sliding_speed_fraction, case.motion.period
+    assert fraction * 2 * np.pi * case.motion.amplitude / period > \
+        1.5 * case.contact.dynamic_velocity
+    slows = scene.motion.slide_start + period / (2 * np.pi) * np.arccos(fraction)
+    margin = 0.1 * case.solver.step_size
+    scene.step_hooks[-1](scene.mbs, slows - lead - margin)
+    assert iteration.maxStepSize == large
+    scene.step_hooks[-1](scene.mbs, slows - lead + margin)
+    assert iteration.maxStepSize == case.solver.step_size
