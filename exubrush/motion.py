@@ -70,6 +70,11 @@ class SineSlide:
         """Largest slide speed, 2π A / T [mm/s]."""
         return 2.0 * math.pi * self.amplitude / self.period
 
+    def velocities(self, taus: np.ndarray) -> np.ndarray:
+        """Velocity [mm/s] at each slide time τ [s] of ``taus`` (element-wise)."""
+        omega = 2.0 * math.pi / self.period
+        return self.amplitude * omega * np.cos(omega * np.asarray(taus, dtype=float))
+
     def evaluate(self, tau: float) -> tuple[float, float, float]:
         """Position [mm], velocity [mm/s] and acceleration [mm/s²] at slide time τ [s]."""
         omega = 2.0 * math.pi / self.period
@@ -106,6 +111,11 @@ class TabulatedSlide:
         """Position [mm], velocity [mm/s] and acceleration [mm/s²] at slide time τ [s]."""
         tau = min(max(tau, 0.0), self.duration)
         return tuple(float(self._spline(tau, k)) for k in range(3))
+
+    def velocities(self, taus: np.ndarray) -> np.ndarray:
+        """Velocity [mm/s] at each slide time τ [s] of ``taus`` (element-wise, held at the
+        table's ends as :meth:`evaluate`)."""
+        return self._spline(np.clip(np.asarray(taus, dtype=float), 0.0, self.duration), 1)
 
     @property
     def peak_speed(self) -> float:
@@ -204,6 +214,28 @@ class HeadMotion:
         """Whether the head slides at ``speed`` [mm/s] or faster at time t [s] (never
         before the slide starts)."""
         return t > self.slide_start and abs(self.sliding(t)[1]) >= speed
+
+    def sliding_faster_throughout(self, speed: float, window: float, resolution: float):
+        """A predicate ``fast(t)``: whether the head slides at ``speed`` [mm/s] or faster
+        all through [t, t + ``window``] [s] (never at or before the slide's start), its
+        speed sampled every ``resolution`` [s] from the slide's start, the samples that
+        bracket the interval included (a slower stretch shorter than ``resolution``
+        between two samples can be missed). Looking at both ends only would miss a
+        reversal between them."""
+        start, duration = self.slide_start, self.slide.duration
+        count = math.ceil((duration + window) / resolution) + 2
+        taus = np.arange(count) * resolution
+        slow = np.abs(self.slide.velocities(taus)) < speed
+        slow_before = np.concatenate([[0], np.cumsum(slow)])  # slow samples before index
+
+        def fast(t: float) -> bool:
+            if t <= start:
+                return False
+            first = int((t - start) / resolution)
+            last = min(math.ceil((t + window - start) / resolution), count - 1)
+            return bool(slow_before[last + 1] == slow_before[first])
+
+        return fast
 
     def sliding(self, t: float) -> tuple[float, float, float]:
         """Slider position [mm], velocity [mm/s] and acceleration [mm/s²] at time t [s]."""

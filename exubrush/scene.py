@@ -402,15 +402,18 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
         # above the friction law's Stribeck band with a margin, whatever the peak speed
         speed = max(case.solver.sliding_speed_fraction * scene.motion.slide.peak_speed,
                     STRIBECK_MARGIN * case.contact.dynamic_velocity)
-        # how long a lower cap may take to hold: the larger steps go on for up to
-        # solver.step_recovery_steps + 1 steps after it drops (step_cap), and one more
+        # how long a lower cap may take to hold: the step in progress and up to
+        # solver.step_recovery_steps - 1 more stay large (step_cap); two steps of margin,
+        # for a step that took more than Exudyn's 7 Newton iterations where the step would
+        # be changed (it defers the change)
         ahead = (case.solver.step_recovery_steps + 2) * sliding_step
         clear = None
         if case.surface.kind == "tooth-row":
             clear = _tips_on_flat_tops(case.surface, tips, ahead,
                                        scene.motion.slide.peak_speed)
-        scene.step_hooks.append(_sliding_step_cap(scene.motion, case.solver.step_size,
-                                                  sliding_step, speed, ahead, clear))
+        fast = scene.motion.sliding_faster_throughout(speed, ahead, case.solver.step_size)
+        scene.step_hooks.append(_sliding_step_cap(fast, case.solver.step_size, sliding_step,
+                                                  clear))
     mbs.Assemble()
     if scene.bristle_contact is not None:
         from exubrush.contact.exudyn_between import locate_in_system
@@ -419,20 +422,18 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
     return scene
 
 
-def _sliding_step_cap(motion: HeadMotion, step_size: float, sliding_step: float,
-                      speed: float, ahead: float, clear=None):
-    """Step hook letting the step grow from ``step_size`` to ``sliding_step`` [s] while the
-    head slides at ``speed`` [mm/s] or faster, now and ``ahead`` [s] on (the time a lower
-    cap may take to hold), and ``clear(mbs)`` holds if given (docs/model.md, "Steps in the
-    middle of a stroke"). Only on :data:`LARGER_STEP_SURFACES`, and not for groups of
-    bristles that touch each other: their broad phase is sized for ``step_size``."""
+def _sliding_step_cap(fast, step_size: float, sliding_step: float, clear=None):
+    """Step hook letting the step grow from ``step_size`` to ``sliding_step`` [s] while
+    ``fast(t)`` holds (the head slides fast enough from now until a lower cap could take
+    hold: HeadMotion.sliding_faster_throughout) and ``clear(mbs)`` holds if given
+    (docs/model.md, "Steps in the middle of a stroke"). Only on
+    :data:`LARGER_STEP_SURFACES`, and not for groups of bristles that touch each other:
+    their broad phase is sized for ``step_size``."""
 
-    def fast(mbs, t):
-        return (motion.sliding_faster_than(t, speed)
-                and motion.sliding_faster_than(t + ahead, speed)
-                and (clear is None or clear(mbs)))
+    def larger_allowed(mbs, t):
+        return fast(t) and (clear is None or clear(mbs))
 
-    return step_cap(step_size, sliding_step, fast)
+    return step_cap(step_size, sliding_step, larger_allowed)
 
 
 def _tips_on_flat_tops(surface, tips: list, ahead: float, speed: float):

@@ -127,14 +127,15 @@ def step_cap(step_size: float, larger_step: float, larger_allowed):
     ``larger_allowed(mbs, t)`` holds, else ``step_size`` [s].
 
     Exudyn calls the hook with t at the end of the step it is about to try, whose size is
-    fixed by then: a new cap applies from the next step on. A larger cap lets the step
-    double towards it after ``solver.step_recovery_steps`` good steps; a smaller one takes
-    the step down to it at the next such point, at most ``step_recovery_steps`` + 1 steps
-    on (or at the next failed try, which cuts it by ``solver.step_cut``), so
-    ``larger_allowed`` should look ahead by that many large steps. A good step is one that
-    converged within Exudyn's ``adaptiveStepRecoveryIterations`` (7) Newton iterations:
-    large steps that each take more but converge would keep the step large for longer;
-    in the middle of a stroke they take one or two.
+    fixed by then. Exudyn applies the cap when it next tries to grow the step, which it
+    does every ``solver.step_recovery_steps`` good steps (counting on while the step is at
+    the cap): a larger cap lets the step double towards it there, and a smaller one takes
+    the step down to it there (or at the next failed try, which cuts it by
+    ``solver.step_cut``). So the step the hook sees and up to ``step_recovery_steps`` − 1
+    after it may still be large, and ``larger_allowed`` should look that far ahead. A good
+    step is one that converged within Exudyn's ``adaptiveStepRecoveryIterations`` (7)
+    Newton iterations: large steps that each take more but converge would keep the step
+    large for longer; in the middle of a stroke they take one or two.
     """
 
     last = [None, None]  # the solver and the cap last set on it

@@ -96,3 +96,25 @@ def test_the_head_slides_faster_than_a_speed_only_in_the_middle_of_a_stroke():
     # |cos| >= 1/2 within T/6 = 2 s of a speed peak
     assert motion.sliding_faster_than(start + 6.0 + 1.99, half)
     assert not motion.sliding_faster_than(start + 6.0 + 2.01, half)
+
+
+@pytest.mark.parametrize("slide", [
+    SineSlide(15.0, 12.0, 2.0),
+    # the same sine sampled every 10 ms (PCHIP's speed within 1e-4 of the sine's)
+    TabulatedSlide(np.arange(0.0, 24.0001, 0.01),
+                   15.0 * np.sin(2 * np.pi * np.arange(0.0, 24.0001, 0.01) / 12.0)),
+])
+def test_the_head_slides_fast_throughout_a_window_only_without_a_slow_stretch_in_it(slide):
+    motion = HeadMotion(1.5, 1.0, 0.2, slide)
+    start, half = motion.slide_start, 0.5 * motion.slide.peak_speed
+    # |cos(2π τ/12)| >= 1/2 for τ in [0, 2], [4, 8], [10, 14], ...
+    fast = motion.sliding_faster_throughout(half, 2.3, 0.002)
+    assert not fast(start + 0.1)  # [0.1, 2.4]: slow from τ = 2
+    assert fast(start + 4.1)  # [4.1, 6.4]
+    assert not fast(start + 5.8)  # [5.8, 8.1]: slow at its end
+    # both ends fast, the reversal at τ = 3 between them: slow
+    assert motion.sliding_faster_than(start + 1.9, half)
+    assert motion.sliding_faster_than(start + 4.2, half)
+    assert not fast(start + 1.9)
+    assert not fast(start - 0.5)  # before the slide
+    assert not fast(start)

@@ -17,13 +17,22 @@ def _script(monkeypatch):
     return module
 
 
-def test_a_retry_marks_the_attempt_before_it_failed_and_costs_add_up(monkeypatch):
-    # (end time, start time, Jacobians so far, Newton iterations so far) before each
-    # attempt: the second attempt (0.1 -> 0.2 s) failed, its retry went 0.1 -> 0.15 s
-    rows = [(0.1, 0.0, 0, 0), (0.2, 0.1, 2, 3), (0.15, 0.1, 10, 15), (0.2, 0.15, 11, 17)]
-    ends, failed, jacobians, iterations = _script(monkeypatch).attempt_costs(rows, 12, 18)
-    np.testing.assert_array_equal(ends, [0.1, 0.2, 0.15, 0.2])
-    np.testing.assert_array_equal(failed, [False, True, False, False])
-    np.testing.assert_array_equal(jacobians, [2, 8, 1, 1])
-    np.testing.assert_array_equal(iterations, [3, 12, 2, 1])
-    assert jacobians.sum() == 12 and iterations.sum() == 18  # every count in one attempt
+# (end time, start time, Jacobians so far, Newton iterations so far) before each attempt:
+# 0 -> 0.1 s; 0.1 -> 0.2 s failed, so did its retry 0.1 -> 0.15 s; 0.1 -> 0.125 s; then
+# 0.125 -> 0.2 s
+ROWS = [(0.1, 0.0, 0, 0), (0.2, 0.1, 2, 3), (0.15, 0.1, 10, 15), (0.125, 0.1, 19, 27),
+        (0.2, 0.125, 20, 29)]
+
+
+def test_retries_mark_the_attempts_before_them_failed_and_each_pays_its_own_counts(
+        monkeypatch):
+    starts, failed, jacobians, iterations = _script(monkeypatch).attempt_costs(ROWS, 21, 31)
+    np.testing.assert_array_equal(starts, [0.0, 0.1, 0.1, 0.1, 0.125])
+    np.testing.assert_array_equal(failed, [False, True, True, False, False])
+    np.testing.assert_array_equal(jacobians, [2, 8, 9, 1, 1])
+    np.testing.assert_array_equal(iterations, [3, 12, 12, 2, 2])
+
+
+def test_the_last_attempt_of_a_solve_that_stopped_failed(monkeypatch):
+    _, failed, _, _ = _script(monkeypatch).attempt_costs(ROWS, 21, 31, finished=False)
+    np.testing.assert_array_equal(failed, [False, True, True, False, True])

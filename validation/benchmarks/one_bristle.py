@@ -24,9 +24,9 @@ def add_arguments(parser: argparse.ArgumentParser, case: str, bristle: int) -> N
 
 
 def build(parser: argparse.ArgumentParser, args: argparse.Namespace):
-    """(the case, the bristle's scene, its Exudyn settings) for the parsed options; the
-    scene's pre-step function is not set yet. A bad case, override or bristle index ends
-    the script with the parser's one-line error (exit code 2)."""
+    """(the prepared case, the bristle's scene, its Exudyn settings) for the parsed
+    options; the scene's pre-step function is not set yet. A bad case, override or
+    bristle index ends the script with the parser's one-line error (exit code 2)."""
     try:
         case = load_case(args.case, [f"model.kind='{args.model}'",
                                      f"motion.periods={args.periods:g}", *args.overrides])
@@ -37,4 +37,4 @@ def build(parser: argparse.ArgumentParser, args: argparse.Namespace):
     if not 0 <= args.bristle < count:
         parser.error(f"--bristle {args.bristle}: the head has bristles 0 to {count - 1}")
     scene = build_scene(prepared, (args.bristle,))
-    return case, scene, group_settings(prepared, scene, (args.bristle,))
+    return prepared, scene, group_settings(prepared, scene, (args.bristle,))

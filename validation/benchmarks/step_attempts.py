@@ -1,7 +1,7 @@
 """Step attempts of one bristle's solve: how many failed, and what they cost.
 
     python validation/benchmarks/step_attempts.py [--case interdental] [--model dfm|prb]
-        [--periods 1] [--bristle 23] [--bins 0.5] [--set KEY=VALUE ...]
+        [--periods 1] [--bristle 23] [--bins 0.5] [--watch T0 T1] [--set KEY=VALUE ...]
 
 Builds one bristle of the case's head as exubrush does and solves it in this process
 (Exudyn's fast core), reading the solver's counters before every step attempt: Exudyn
@@ -9,11 +9,11 @@ calls the pre-step function before each attempt, a retry after a failed Newton s
 included, and a retry starts where the failed attempt started. Prints the attempts, the
 failed ones, and the Newton iterations and Jacobians spent in failed and in accepted
 attempts; with ``--bins`` the same per interval of simulated time [s] (where in the
-stroke the Jacobians go). With ``--watch T0 T1`` it also prints, for every Newton iteration
-of the attempts that end between T0 and T1 [s], the residual of the iteration before and the
-tip's penetration [mm], normal speed [mm/s] and slip [mm/s] on each surface feature it
-touches (analytic surfaces). validation/benchmarks/README.md, "Where a snap's Jacobians
-go".
+stroke the Jacobians go, by the attempts' start times). With ``--watch T0 T1`` it also
+prints, for every Newton iteration of the attempts that end between T0 and T1 [s], the
+residual of the iteration before and the tip's penetration [mm], normal speed [mm/s] and
+slip [mm/s] on each surface feature it touches (analytic surfaces, the paper's law).
+validation/benchmarks/README.md, "Where a snap's Jacobians go".
 """
 
 from __future__ import annotations
@@ -48,14 +48,14 @@ def record_attempts(scene) -> list:
     return rows
 
 
-def watch_newton(scene, surface, window: tuple[float, float]) -> None:
-    """Print the tip's contact state at every Newton iteration of the attempts whose end
-    time lies in ``window`` [s] (Exudyn calls the pre-residual function with the iterate
-    in place, before each residual)."""
+def watch_newton(scene, surface, radius: float, window: tuple[float, float]) -> None:
+    """Print the tip's contact state (sphere of ``radius`` [mm]) at every Newton iteration
+    of the attempts whose end time lies in ``window`` [s] (Exudyn calls the pre-residual
+    function with the iterate in place, before each residual)."""
     import exudyn as exu
 
     output = exu.OutputVariableType
-    contact, radius = scene.contacts[0], scene.lagged_contacts[0][1]
+    contact = scene.contacts[0]
 
     def show(mbs, t, iteration, _discontinuous):
         if not window[0] <= t <= window[1]:
@@ -77,16 +77,30 @@ def watch_newton(scene, surface, window: tuple[float, float]) -> None:
     scene.mbs.SetPreNewtonResidualUserFunction(show)
 
 
-def attempt_costs(rows: list, final_jacobians: int, final_iterations: int):
-    """Per attempt: (its end time [s], failed?, Jacobians, Newton iterations) as arrays.
+def attempt_costs(rows: list, final_jacobians: int, final_iterations: int,
+                  finished: bool = True):
+    """Per attempt: (its start time [s], failed?, Jacobians, Newton iterations) as arrays.
 
-    An attempt failed if the next one starts at the same time (a retry); its cost is the
-    counters' growth up to the next attempt (the last one's: up to the solve's end)."""
+    An attempt failed if the next one starts at the same time (a retry), the last one if
+    the solve did not finish; an attempt's cost is the counters' growth up to the next
+    attempt (the last one's: up to the solve's end)."""
     table = np.array(rows, dtype=float)
     ends = np.append(table[:, 2:], [[final_jacobians, final_iterations]], axis=0)
     costs = np.diff(ends, axis=0)
-    failed = np.append(table[1:, 1] == table[:-1, 1], False)
-    return table[:, 0], failed, costs[:, 0], costs[:, 1]
+    failed = np.append(table[1:, 1] == table[:-1, 1], not finished)
+    return table[:, 1], failed, costs[:, 0], costs[:, 1]
+
+
+def watch_error(prepared, scene, index: int) -> str | None:
+    """Why ``--watch`` cannot show this bristle's contact, or None."""
+    case = prepared.case
+    if case.contact.backend == "exudyn-builtin":
+        return "--watch: contact.backend 'exudyn-builtin' has no tip state to show"
+    if case.surface.kind == "mesh":
+        return "--watch: shows analytic surfaces only (the plane, cylinder, sphere, tooth row)"
+    if not scene.contacts:
+        return f"--watch: bristle {index} has no contact with the surface"
+    return None
 
 
 def main() -> None:
@@ -101,24 +115,32 @@ def main() -> None:
         parser.error(f"--bins {args.bins:g}: give an interval > 0 s, or 0 for none")
     if args.watch and args.watch[0] > args.watch[1]:
         parser.error(f"--watch {args.watch[0]:g} {args.watch[1]:g}: T0 must not exceed T1")
-    case, scene, settings = build(parser, args)
-    rows = record_attempts(scene)
+    prepared, scene, settings = build(parser, args)
     if args.watch:
-        watch_newton(scene, case.surface, tuple(args.watch))
+        problem = watch_error(prepared, scene, args.bristle)
+        if problem:
+            parser.error(problem)
+        watch_newton(scene, prepared.case.surface, prepared.bristles[args.bristle].tip_radius,
+                     tuple(args.watch))
+    rows = record_attempts(scene)
     clock = time.perf_counter()
-    scene.mbs.SolveDynamic(settings)
+    try:
+        finished = bool(scene.mbs.SolveDynamic(settings))
+    except RuntimeError as error:  # Exudyn's SolverError: the step cut reached its minimum
+        print(f"the solve stopped: {error}")
+        finished = False
     wall = time.perf_counter() - clock
     statistics = solver_statistics(scene.mbs)
-    ends, failed, jacobians, iterations = attempt_costs(
-        rows, statistics.jacobian_updates, statistics.newton_iterations)
-    print(f"wall {wall:.3f} s, {statistics}")
-    print(f"attempts {len(ends)}, failed {int(failed.sum())}")
+    starts, failed, jacobians, iterations = attempt_costs(
+        rows, statistics.jacobian_updates, statistics.newton_iterations, finished)
+    print(f"wall {wall:.3f} s, {statistics} (Exudyn's steps: accepted attempts + 1)")
+    print(f"attempts {len(starts)}, failed {int(failed.sum())}")
     for label, mask in (("failed", failed), ("accepted", ~failed)):
         print(f"  {label:8s}: Jacobians {int(jacobians[mask].sum()):6d}, "
               f"Newton iterations {int(iterations[mask].sum()):7d}")
     if args.bins > 0.0:
         print(f"{'from [s]':>9s} {'attempts':>9s} {'failed':>7s} {'Jacobians':>10s}")
-        which = np.floor(ends / args.bins).astype(int)
+        which = np.floor(starts / args.bins).astype(int)
         for b in range(which.max() + 1):
             mask = which == b
             print(f"{b * args.bins:9.2f} {int(mask.sum()):9d} {int(failed[mask].sum()):7d} "
