@@ -210,18 +210,14 @@ class HeadMotion:
         D, T = self.approach_distance, self.approach_duration
         return D * s, D * ds / T, D * dds / T**2
 
-    def sliding_faster_than(self, t: float, speed: float) -> bool:
-        """Whether the head slides at ``speed`` [mm/s] or faster at time t [s] (never
-        before the slide starts)."""
-        return t > self.slide_start and abs(self.sliding(t)[1]) >= speed
-
     def sliding_faster_throughout(self, speed: float, window: float, resolution: float):
         """A predicate ``fast(t)``: whether the head slides at ``speed`` [mm/s] or faster
         all through [t, t + ``window``] [s] (never at or before the slide's start), its
         speed sampled every ``resolution`` [s] from the slide's start, the samples that
         bracket the interval included (a slower stretch shorter than ``resolution``
         between two samples can be missed). Looking at both ends only would miss a
-        reversal between them."""
+        reversal between them. Sampled up to a window past the slide's end: beyond that,
+        ``fast(t)`` is the last sample's answer."""
         start, duration = self.slide_start, self.slide.duration
         count = math.ceil((duration + window) / resolution) + 2
         taus = np.arange(count) * resolution
@@ -231,8 +227,8 @@ class HeadMotion:
         def fast(t: float) -> bool:
             if t <= start:
                 return False
-            first = int((t - start) / resolution)
             last = min(math.ceil((t + window - start) / resolution), count - 1)
+            first = min(int((t - start) / resolution), last)
             return bool(slow_before[last + 1] == slow_before[first])
 
         return fast

@@ -170,3 +170,28 @@ def test_no_large_step_runs_into_a_slow_stretch_of_a_fast_short_stroke():
         taus = np.linspace(begin, end, 20) - scene.motion.slide_start
         assert taus[0] > 0.0
         assert np.abs(peak * np.cos(omega * taus)).min() >= threshold
+
+
+def test_the_cap_drops_the_look_ahead_before_the_speed_falls():
+    case = load_case("orthogonal", ONE_BRISTLE)
+    scene = build_scene(prepare(case), (0,))
+    iteration = SimpleNamespace(maxStepSize=0.0)
+    scene.mbs.sys["dynamicSolver"] = SimpleNamespace(it=iteration)
+    large = min(case.solver.sliding_step_factor * case.solver.step_size,
+                case.output.interval)
+    # Exudyn applies a lower cap when it next tries to grow the step, every
+    # step_recovery_steps good steps: the step in progress and up to step_recovery_steps - 1
+    # more may still be large; two steps of margin (docs/model.md)
+    lead = (case.solver.step_recovery_steps + 2) * large
+    # x = A sin(2π τ/T): the speed falls below the fraction f of its peak at
+    # τ = T/(2π) arccos(f), before the first reversal at T/4 (0.3 of the paper's 7.85 mm/s
+    # is above the Stribeck margin, so f is the fraction)
+    fraction, period = case.solver.sliding_speed_fraction, case.motion.period
+    assert fraction * 2 * np.pi * case.motion.amplitude / period > \
+        STRIBECK_MARGIN * case.contact.dynamic_velocity
+    slows = scene.motion.slide_start + period / (2 * np.pi) * np.arccos(fraction)
+    margin = 1.5 * case.solver.step_size  # the speed is sampled every step_size
+    scene.step_hooks[-1](scene.mbs, slows - lead - margin)
+    assert iteration.maxStepSize == large
+    scene.step_hooks[-1](scene.mbs, slows - lead + margin)
+    assert iteration.maxStepSize == case.solver.step_size

@@ -89,18 +89,19 @@ def test_peak_slide_speed_of_a_sine_and_of_its_samples():
 def test_the_head_slides_faster_than_a_speed_only_in_the_middle_of_a_stroke():
     motion = HeadMotion(1.5, 1.0, 0.2, SineSlide(15.0, 12.0, 2.0))
     start, half = motion.slide_start, 0.5 * motion.slide.peak_speed
-    assert not motion.sliding_faster_than(0.5, half)  # approaching
-    assert not motion.sliding_faster_than(start, half)  # at rest before the slide
-    assert motion.sliding_faster_than(start + 0.01, half)  # a sine starts at its peak speed
-    assert not motion.sliding_faster_than(start + 3.0, half)  # the reversal
+    fast = motion.sliding_faster_throughout(half, 0.0, 0.002)  # at a point (its samples)
+    assert not fast(0.5)  # approaching
+    assert not fast(start)  # at rest before the slide
+    assert fast(start + 0.01)  # a sine starts at its peak speed
+    assert not fast(start + 3.0)  # the reversal
     # |cos| >= 1/2 within T/6 = 2 s of a speed peak
-    assert motion.sliding_faster_than(start + 6.0 + 1.99, half)
-    assert not motion.sliding_faster_than(start + 6.0 + 2.01, half)
+    assert fast(start + 6.0 + 1.99)
+    assert not fast(start + 6.0 + 2.01)
 
 
 @pytest.mark.parametrize("slide", [
     SineSlide(15.0, 12.0, 2.0),
-    # the same sine sampled every 10 ms (PCHIP's speed within 1e-4 of the sine's)
+    # the same sine sampled every 10 ms (PCHIP's speed within 0.011 mm/s of the sine's)
     TabulatedSlide(np.arange(0.0, 24.0001, 0.01),
                    15.0 * np.sin(2 * np.pi * np.arange(0.0, 24.0001, 0.01) / 12.0)),
 ])
@@ -113,8 +114,20 @@ def test_the_head_slides_fast_throughout_a_window_only_without_a_slow_stretch_in
     assert fast(start + 4.1)  # [4.1, 6.4]
     assert not fast(start + 5.8)  # [5.8, 8.1]: slow at its end
     # both ends fast, the reversal at τ = 3 between them: slow
-    assert motion.sliding_faster_than(start + 1.9, half)
-    assert motion.sliding_faster_than(start + 4.2, half)
+    assert abs(motion.sliding(start + 1.9)[1]) >= half
+    assert abs(motion.sliding(start + 4.2)[1]) >= half
     assert not fast(start + 1.9)
     assert not fast(start - 0.5)  # before the slide
     assert not fast(start)
+
+
+def test_the_samples_that_bracket_a_window_decide():
+    # 0.6 of the peak speed: slow for τ in (1.7715, 4.2285) s; samples every 0.5 s
+    motion = HeadMotion(1.5, 1.0, 0.2, SineSlide(15.0, 12.0, 2.0))
+    start, speed = motion.slide_start, 0.6 * motion.slide.peak_speed
+    assert not motion.sliding_faster_throughout(speed, 1.2, 0.5)(start + 0.6)  # 2.0 after
+    assert not motion.sliding_faster_throughout(speed, 0.5, 0.5)(start + 4.2)  # 4.0 before
+    assert motion.sliding_faster_throughout(speed, 0.5, 0.5)(start + 4.6)  # 4.5 .. 5.5
+    # far past the slide's end (2 periods, 24 s): the last sample answers, at τ = 25 s
+    # (sampled to a window and two samples past the end): |cos(2π 25/12)| = 0.87 >= 0.6
+    assert motion.sliding_faster_throughout(speed, 0.5, 0.5)(start + 100.0)
