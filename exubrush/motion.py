@@ -149,7 +149,7 @@ class TabulatedSlide:
         """
         spacing = max(window / 4.0, self.duration / 1e6)
         times = np.arange(0.0, self.duration + spacing, spacing)
-        speeds = self._spline(np.minimum(times, self.duration), 1)
+        speeds = self.velocities(times)
         span = max(1, round(window / spacing))
         changes = np.abs(speeds[span:] - speeds[:-span])
         if changes.size == 0:

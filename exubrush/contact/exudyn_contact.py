@@ -76,9 +76,8 @@ def contact_user_function(
 
     ``law.backend`` chooses how: ``"paper-symbolic"`` (and ``"paper-compiled"``, whose
     connector is switched off and kept for its outputs) records the law into a C++
-    expression tree (keep
-    the returned object alive as long as ``mbs`` runs); ``"paper-python"`` returns the
-    plain Python function.
+    expression tree (keep the returned object alive as long as ``mbs`` runs);
+    ``"paper-python"`` returns the plain Python function.
 
     Parameters
     ----------

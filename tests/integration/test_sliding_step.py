@@ -111,6 +111,12 @@ def test_on_a_tooth_row_the_step_grows_only_with_every_tip_over_a_flat_top():
     assert clear(_Tips([centre, head(1.5, 0.0, 0.3)], [[0.0, 0.0, 0.0], along]))
 
 
+def _large_step(case) -> float:
+    """The larger step of the middle of a stroke [s]: sliding_step_factor times step_size,
+    at most the output interval."""
+    return min(case.solver.sliding_step_factor * case.solver.step_size, case.output.interval)
+
+
 def _cap_in_a_stroke(surface_x: float) -> float:
     """The step cap the tooth row's scene sets in the middle of a stroke, with its one tip
     at rest where the reference state has it (over a top with the row at x = 0)."""
@@ -125,8 +131,7 @@ def _cap_in_a_stroke(surface_x: float) -> float:
 
 def test_the_tooth_row_scene_caps_the_step_by_where_its_tips_are():
     case = load_case("orthogonal", ONE_BRISTLE)
-    large = min(case.solver.sliding_step_factor * case.solver.step_size,
-                case.output.interval)
+    large = _large_step(case)
     assert _cap_in_a_stroke(0.0) == large  # the tip over a top's middle
     assert _cap_in_a_stroke(-4.0) == case.solver.step_size  # the tip over a gap
 
@@ -177,8 +182,7 @@ def test_the_cap_drops_the_look_ahead_before_the_speed_falls():
     scene = build_scene(prepare(case), (0,))
     iteration = SimpleNamespace(maxStepSize=0.0)
     scene.mbs.sys["dynamicSolver"] = SimpleNamespace(it=iteration)
-    large = min(case.solver.sliding_step_factor * case.solver.step_size,
-                case.output.interval)
+    large = _large_step(case)
     # Exudyn applies a lower cap when it next tries to grow the step, every
     # step_recovery_steps good steps: the step in progress and up to step_recovery_steps - 1
     # more may still be large; two steps of margin (docs/model.md)
