@@ -216,10 +216,11 @@ class HeadMotion:
         speed sampled every ``resolution`` [s] from the slide's start, the samples that
         bracket the interval included (a slower stretch shorter than ``resolution``
         between two samples can be missed). Looking at both ends only would miss a
-        reversal between them. Sampled up to a window past the slide's end: beyond that,
-        ``fast(t)`` is the last sample's answer."""
+        reversal between them. Sampled to the slide's end and a sample past it, whatever
+        ``window`` (the run ends there): a window reaching beyond is judged by the samples
+        in it up to there."""
         start, duration = self.slide_start, self.slide.duration
-        count = math.ceil((duration + window) / resolution) + 2
+        count = math.ceil(duration / resolution) + 2
         taus = np.arange(count) * resolution
         slow = np.abs(self.slide.velocities(taus)) < speed
         slow_before = np.concatenate([[0], np.cumsum(slow)])  # slow samples before index

@@ -128,6 +128,15 @@ def test_the_samples_that_bracket_a_window_decide():
     assert not motion.sliding_faster_throughout(speed, 1.2, 0.5)(start + 0.6)  # 2.0 after
     assert not motion.sliding_faster_throughout(speed, 0.5, 0.5)(start + 4.2)  # 4.0 before
     assert motion.sliding_faster_throughout(speed, 0.5, 0.5)(start + 4.6)  # 4.5 .. 5.5
-    # far past the slide's end (2 periods, 24 s): the last sample answers, at τ = 25 s
-    # (sampled to a window and two samples past the end): |cos(2π 25/12)| = 0.87 >= 0.6
+    # far past the slide's end (2 periods, 24 s): the last sample answers, at τ = 24.5 s
+    # (sampled to a sample past the end): |cos(2π 24.5/12)| = 0.97 >= 0.6
     assert motion.sliding_faster_throughout(speed, 0.5, 0.5)(start + 100.0)
+
+
+def test_a_window_longer_than_the_slide_samples_the_slide_only():
+    # solver.step_recovery_steps = 2**31 - 1 made a window of 2e7 s: sampling it at 2 ms
+    # asked for 80 GiB. The run ends with the slide, so the samples do too.
+    motion = HeadMotion(1.5, 1.0, 0.2, SineSlide(15.0, 12.0, 2.0))
+    start, half = motion.slide_start, 0.5 * motion.slide.peak_speed
+    fast = motion.sliding_faster_throughout(half, 2e7, 0.002)
+    assert not fast(start + 0.1)  # the reversal at τ = 3 s lies in the window
