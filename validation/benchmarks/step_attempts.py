@@ -19,6 +19,7 @@ validation/benchmarks/README.md, "Where a snap's Jacobians go".
 from __future__ import annotations
 
 import argparse
+import math
 import time
 
 import numpy as np
@@ -27,6 +28,8 @@ from one_bristle import add_arguments, build
 from exubrush.contact.laws import feature_slip
 from exubrush.solve import solver_statistics
 from exubrush.surfaces import features, taken
+
+MAX_BINS = 10_000  # rows of the --bins table
 
 
 def record_attempts(scene) -> list:
@@ -111,11 +114,17 @@ def main() -> None:
     parser.add_argument("--watch", type=float, nargs=2, metavar=("T0", "T1"),
                         help="print each Newton iterate's tip contact between these times [s]")
     args = parser.parse_args()
-    if args.bins < 0.0:
+    if not (args.bins == 0.0 or 0.0 < args.bins < math.inf):
         parser.error(f"--bins {args.bins:g}: give an interval > 0 s, or 0 for none")
-    if args.watch and args.watch[0] > args.watch[1]:
-        parser.error(f"--watch {args.watch[0]:g} {args.watch[1]:g}: T0 must not exceed T1")
+    if args.watch and not (math.isfinite(args.watch[0]) and math.isfinite(args.watch[1])
+                           and args.watch[0] <= args.watch[1]):
+        parser.error(f"--watch {args.watch[0]:g} {args.watch[1]:g}: give two times [s], "
+                     "T0 not after T1")
     prepared, scene, settings = build(parser, args)
+    end = prepared.motion.end_time
+    if args.bins and end / args.bins > MAX_BINS:
+        parser.error(f"--bins {args.bins:g}: {end / args.bins:.3g} intervals over the run's "
+                     f"{end:g} s, more than {MAX_BINS:,}; give at least {end / MAX_BINS:.3g} s")
     if args.watch:
         problem = watch_error(prepared, scene, args.bristle)
         if problem:
