@@ -34,6 +34,7 @@ from exubrush.models.geometry import BristleGeometry
 from exubrush.models.prb import add_prb_bristle, stub_graphics
 from exubrush.models.stiffness import buckling_load
 from exubrush.motion import HeadMotion
+from exubrush.newton import LineSearch, after_step_cut, line_search_applies
 from exubrush.parameters.case import COMPILED_SURFACES
 from exubrush.prepared import PreparedCase
 from exubrush.solver import fresh_jacobian_after_step_change, linear_solver, step_cap
@@ -89,6 +90,8 @@ class Scene:
     step_hooks: list = field(default_factory=list)
     # contact between the bristles (contact.between_bristles, a group of two or more)
     bristle_contact: BristleContact | None = None
+    # the line search in Newton's iterations (solver.line_search), where it runs
+    line_search: LineSearch | None = None
 
     def run_step_hooks(self, mbs, t) -> bool:
         """Call every step hook; True (go on). Fit for Exudyn's pre-step user function
@@ -419,7 +422,25 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
         from exubrush.contact.exudyn_between import locate_in_system
 
         locate_in_system(mbs, scene.bristle_contact)
+    _add_line_search(scene, case.solver.line_search)
     return scene
+
+
+def _add_line_search(scene: Scene, setting: str) -> None:
+    """Run Newton's line search (exubrush.newton) as ``solver.line_search`` says: "auto"
+    is "always" in a group of touching bristles (a Newton iteration there costs a
+    Jacobian of the group, the search's Python next to nothing) and "after-cut" elsewhere
+    (one bristle's iteration costs microseconds: the search runs only where Newton has
+    failed), and off where the nodes' rotations are on the Lie group."""
+    if setting == "off" or (setting == "auto" and line_search_applies(scene.mbs)):
+        return
+    if setting == "auto":
+        setting = "always" if scene.bristle_contact is not None else "after-cut"
+    scene.line_search = LineSearch()
+    if setting == "always":
+        scene.mbs.SetPreNewtonResidualUserFunction(scene.line_search)
+    else:
+        scene.step_hooks.append(after_step_cut(scene.line_search))
 
 
 def _sliding_step_cap(fast, step_size: float, sliding_step: float, clear=None):

@@ -17,6 +17,7 @@ from typing import Protocol
 import exudyn as exu
 import numpy as np
 
+from exubrush.newton import LineSearch
 from exubrush.prepared import PreparedCase
 from exubrush.sanity import beyond_bound_message
 from exubrush.scene import Scene, build_scene, force_on_tip
@@ -126,7 +127,7 @@ def solve_group(prepared: PreparedCase, selection: tuple[int, ...],
                      None if frame is None else np.asarray(scene.mbs.GetSensorStoredData(frame)),
                      compiled)
                     for index, sensor, frame, compiled in scene.contact_sensors]
-    statistics = solver_statistics(scene.mbs)
+    statistics = solver_statistics(scene.mbs, scene.line_search)
     touching = scene.bristle_contact
     counts = np.asarray(touching.counts if touching is not None else [], float)
     overlaps = touching.overlaps if touching is not None else []
@@ -178,8 +179,9 @@ def solve_group(prepared: PreparedCase, selection: tuple[int, ...],
     )
 
 
-def solver_statistics(mbs) -> SolverStatistics:
-    """Step, Newton and Jacobian counts of the last dynamic solve of ``mbs``."""
+def solver_statistics(mbs, line_search: LineSearch | None = None) -> SolverStatistics:
+    """Step, Newton and Jacobian counts of the last dynamic solve of ``mbs``, and the
+    updates its ``line_search`` shortened."""
     solver = mbs.sys.get("dynamicSolver")
     if solver is None:
         return SolverStatistics()
@@ -189,6 +191,7 @@ def solver_statistics(mbs) -> SolverStatistics:
         newton_iterations=int(it.newtonStepsCount),
         jacobian_updates=int(it.newtonJacobiCount),
         rejected_modified_newton_steps=int(it.rejectedModifiedNewtonSteps),
+        shortened_updates=line_search.counts.shortened if line_search is not None else 0,
     )
 
 

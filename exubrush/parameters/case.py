@@ -533,6 +533,15 @@ class Solver(Parameters):
     newton_iterations: int = param(
         12, "Newton iterations before a step is given up and cut", minimum=10,
     )
+    line_search: str = param(
+        "auto",
+        "shorten Newton's updates until the residual falls (a backtracking line search): "
+        "always = at every iteration, after-cut = while the step is below its largest after "
+        "a cut, off = Exudyn's full updates, auto = always in a group of touching bristles, "
+        "after-cut elsewhere, off on rotation-vector nodes (docs/decisions/"
+        "0001-newton-line-search.md)",
+        "text", choices=("auto", "always", "after-cut", "off"),
+    )
     linear_solver: str = param(
         "auto",
         "linear solver of Newton's steps: auto = EigenDense for one bristle, EigenSparse for "
@@ -655,6 +664,13 @@ class Case(Parameters):
                 f"contact.backend 'exudyn-builtin' brushes a plane only; surface.kind "
                 f"'{self.surface.kind}' needs contact.backend 'paper-symbolic' (or 'paper-python')"
             )
+        if (self.solver.line_search in ("always", "after-cut")
+                and self.model.node_rotation == "rotation-vector"):
+            raise ValueError(
+                f"solver.line_search '{self.solver.line_search}' needs model.rotation "
+                "'euler-parameters': Exudyn updates rotation vectors on the Lie group, where a "
+                "shortened update is not what it continues from; set solver.line_search = "
+                "'auto' or 'off'")
         blended = self.motion.approach_friction == "off" or (
             prb and self.motion.approach_friction == "auto")
         if blended and self.motion.hold_duration <= 0.0:

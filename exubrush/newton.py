@@ -1,0 +1,182 @@
+"""A backtracking line search inside Exudyn's Newton iterations.
+
+Exudyn's implicit solver takes Newton's full update at every iteration. Where a stiff
+contact or the steep stretch of a regularised friction law lies between an iterate and the
+solution, the full update overshoots: a light tip's slip swings across the friction's band
+and back, a filament jumps through its neighbour, and the iterations stall or diverge until
+the step is cut (docs/decisions/0001-newton-line-search.md). A line search keeps Newton's
+direction and shortens the update until the residual falls.
+
+How it sits in Exudyn. After each update Exudyn calls the system's pre-Newton-residual user
+function, then evaluates the residual. There, :class:`LineSearch` evaluates the residual
+at the updated state itself (``ComputeNewtonResidual``) and, where it has not fallen below
+(1 − c·α) of the last iterate's (Armijo's condition on the residual norm), moves the state
+back along the update: α = 1/2, 1/4, ... down to :data:`SHORTEST`, keeping the best it
+found where none is sufficient. With Euler-parameter and Tait-Bryan nodes, generalized-α's
+update is linear in Newton's increment Δ (q −= Δ, q_t −= γ'Δ, q_tt −= β'Δ, λ −= Δλ·s), so
+the state at α·Δ is exactly the last iterate plus α times (full update − last iterate);
+Exudyn's next update starts from whatever state it finds. Lie-group nodes (rotation
+vectors) keep their own copy of the update and compose rotations: the blend would not be
+what Exudyn continues from, so :func:`line_search_applies` refuses them.
+
+Exudyn restarts a modified Newton that diverges: it resets the state to the predictor with
+a zero increment and calls the same function; a zero increment marks that call, which then
+only records the state.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import exudyn as exu
+import numpy as np
+
+# Armijo's sufficient decrease: the residual must fall by this share of α times its size
+SUFFICIENT_DECREASE = 1e-4
+# the shortest update tried (six halvings); below it the best trial is kept
+SHORTEST = 1.0 / 64.0
+
+
+def backtrack(residual_at, last: float, full: float,
+              sufficient: float = SUFFICIENT_DECREASE, shortest: float = SHORTEST):
+    """Step length α of a backtracking line search on a residual norm.
+
+    Parameters
+    ----------
+    residual_at : callable
+        α -> residual norm at the last iterate plus α times the full update; called for
+        α = 1/2, 1/4, ... only (the full update's is ``full``). It must leave the state at
+        the α it was last called with.
+    last, full : float
+        Residual norms at the last iterate and after the full update.
+
+    Returns
+    -------
+    alpha : float
+        1 if the full update is sufficient, else the first halving that is, else the one
+        with the smallest residual (1 included).
+    best_residual : float
+        The residual at the returned α.
+    trials : int
+        How many shorter updates were evaluated.
+    """
+    alpha, residual = 1.0, full
+    best = (full if not math.isnan(full) else math.inf, 1.0)  # a nan is never the best
+    trials = 0
+    while not residual <= (1.0 - sufficient * alpha) * last and alpha > shortest:
+        alpha *= 0.5
+        residual = residual_at(alpha)
+        trials += 1
+        if residual < best[0]:
+            best = (residual, alpha)
+    if residual <= (1.0 - sufficient * alpha) * last:
+        return alpha, residual, trials
+    return best[1], best[0], trials
+
+
+@dataclass
+class LineSearchCounts:
+    """What a line search did in a solve: iterations checked, iterations whose update was
+    shortened, residuals evaluated for shorter updates, and checks where no shorter update
+    was sufficient (the best was kept)."""
+
+    checked: int = 0
+    shortened: int = 0
+    trials: int = 0
+    insufficient: int = 0
+
+
+class LineSearch:
+    """Exudyn pre-Newton-residual user function (mbs, t, newton_iteration,
+    discontinuous_iteration) that shortens Newton's updates (module docstring).
+
+    It reads the solver from ``mbs.sys["dynamicSolver"]`` and its settings from
+    ``mbs.sys["simulationSettings"]``, which ``SolveDynamic(..., storeSolver=True)`` sets.
+    """
+
+    def __init__(self, sufficient: float = SUFFICIENT_DECREASE, shortest: float = SHORTEST):
+        self.sufficient = sufficient
+        self.shortest = shortest
+        self.counts = LineSearchCounts()
+        self._last = None  # the state of the last iterate (q, q_t, q_tt, λ)
+
+    @staticmethod
+    def _state(data) -> tuple[np.ndarray, ...]:
+        current = exu.ConfigurationType.Current
+        return (np.array(data.GetODE2Coordinates(current)),
+                np.array(data.GetODE2Coordinates_t(current)),
+                np.array(data.GetODE2Coordinates_tt(current)),
+                np.array(data.GetAECoordinates(current)))
+
+    @staticmethod
+    def _set_state(data, state) -> None:
+        current = exu.ConfigurationType.Current
+        data.SetODE2Coordinates(state[0], current)
+        data.SetODE2Coordinates_t(state[1], current)
+        data.SetODE2Coordinates_tt(state[2], current)
+        data.SetAECoordinates(state[3], current)
+
+    def __call__(self, mbs, t, newton_iteration, discontinuous_iteration) -> None:
+        data = mbs.systemData
+        solver = mbs.sys["dynamicSolver"]
+        # the predictor, also after a restart (a zero increment)
+        if newton_iteration == 0 or self._last is None or not solver.GetNewtonSolution().any():
+            self._last = self._state(data)
+            return
+        settings = mbs.sys["simulationSettings"]
+        last, full = self._last, self._state(data)
+        self.counts.checked += 1
+        full_residual = solver.ComputeNewtonResidual(mbs, settings)
+
+        at = [1.0]  # the α whose state the system holds
+
+        def residual_at(alpha):
+            self._set_state(data, tuple(a + alpha * (b - a) for a, b in zip(last, full,
+                                                                            strict=True)))
+            at[0] = alpha
+            return solver.ComputeNewtonResidual(mbs, settings)
+
+        alpha, residual, trials = backtrack(residual_at, solver.conv.residual, full_residual,
+                                            self.sufficient, self.shortest)
+        self.counts.trials += trials
+        if alpha < 1.0:
+            self.counts.shortened += 1
+            if not residual <= (1.0 - self.sufficient * alpha) * solver.conv.residual:
+                self.counts.insufficient += 1
+            if at[0] != alpha:  # the best of the trials was not the last
+                residual_at(alpha)
+            self._last = self._state(data)
+        else:
+            if at[0] != 1.0:  # a shorter trial was evaluated last: back to the full update
+                self._set_state(data, full)
+            self._last = full
+
+
+def line_search_applies(mbs) -> str:
+    """Why a line search cannot run on the assembled system ``mbs`` ("" where it can): a
+    node whose rotation Exudyn updates on the Lie group."""
+    for number in range(mbs.systemData.NumberOfNodes()):
+        kind = mbs.GetNode(number)["nodeType"]
+        if kind.endswith("LG"):  # e.g. RigidBodyRotVecLG
+            return (f"node {number} is of type {kind}, whose rotation Exudyn updates on the "
+                    "Lie group; a line search needs model.rotation = 'euler-parameters'")
+    return ""
+
+
+def after_step_cut(search: LineSearch, margin: float = 0.99):
+    """Pre-step hook (mbs, t) that runs ``search`` in Newton only while the step is below
+    the solver's largest step (after a cut, until it has grown back), where Newton had
+    failed; elsewhere a step's one or two iterations are left without its Python cost."""
+    start = exu.ConfigurationType.StartOfStep
+    active = [False]
+
+    def switch(mbs, t):
+        solver = mbs.sys.get("dynamicSolver")
+        step = t - mbs.systemData.GetTime(start)
+        on = solver is not None and step < margin * solver.it.maxStepSize
+        if on != active[0]:
+            mbs.SetPreNewtonResidualUserFunction(search if on else 0)
+            active[0] = on
+
+    return switch
