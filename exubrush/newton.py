@@ -167,14 +167,21 @@ def line_search_applies(mbs) -> str:
 def after_step_cut(search: LineSearch, margin: float = 0.99):
     """Pre-step hook (mbs, t) that runs ``search`` in Newton only while the step is below
     the solver's largest step (after a cut, until it has grown back), where Newton had
-    failed; elsewhere a step's one or two iterations are left without its Python cost."""
-    start = exu.ConfigurationType.StartOfStep
+    failed; elsewhere a step's one or two iterations are left without its Python cost.
+
+    The step is read from the solver's iteration record, kept between calls (a live view:
+    reading it through the solver each time cost as much as the rest of the hook)."""
     active = [False]
+    solver_record = [None, None]  # the solver and its iteration record
 
     def switch(mbs, t):
         solver = mbs.sys.get("dynamicSolver")
-        step = t - mbs.systemData.GetTime(start)
-        on = solver is not None and step < margin * solver.it.maxStepSize
+        if solver is None:
+            return
+        if solver is not solver_record[0]:
+            solver_record[:] = [solver, solver.it]
+        record = solver_record[1]
+        on = record.currentStepSize < margin * record.maxStepSize
         if on != active[0]:
             mbs.SetPreNewtonResidualUserFunction(search if on else 0)
             active[0] = on

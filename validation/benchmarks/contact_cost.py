@@ -1,0 +1,197 @@
+"""What contact between filaments and a tooth row cost against the free scenes.
+
+    python validation/benchmarks/contact_cost.py [--only ROW ...] [--repeat 1]
+        [--code LABEL=SOURCE_TREE ...] [--out validation/results/benchmarks]
+
+Each row is a pair (or set) of runs whose wall times are compared with a target:
+
+- ``tuft window``: the ``tuft`` case (37 filaments), approach and 0.1 period, with contact
+  between the filaments against without (target: at most 3x);
+- ``tuft period``: the same with contact, approach and one period (target: under 120 s);
+- ``filaments``: tufts of 7, 19, 37 and 61 filaments (``tuft7.toml`` in 0.8, 1.2, 1.6 and
+  2.0 mm holes), approach and 0.1 period with contact: the wall time per filament (target:
+  the largest within 1.5x of the smallest);
+- ``blade head``: the paper's head (``orthogonal``), approach and 0.1 period, with contact
+  between its blades against without (target: at most 5x);
+- ``tooth row``: ``interdental`` against ``orthogonal``, approach and half a period
+  (target: at most 1.5x).
+
+Every run is a fresh process (benchmark.run_in_tree) that times ``simulate`` alone.
+``--code old=/path/to/old/checkout new=.`` runs each row with each source tree in turn
+(old, new, old, new, ...), and compares the forces of every later tree's run with the
+first tree's (benchmark.errors: flat-zone means per stroke, reversal peaks, tips), so the
+old solver's accuracy and time sit beside the new one's. Without ``--code`` this tree runs
+alone. A run that took N Jacobians is also worth its counts (run.json's
+``solver_statistics``): timings depend on what else the machine runs.
+
+Output in ``--out``: ``contact-cost.md`` and ``.csv``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import os
+import platform
+import statistics
+import sys
+import tempfile
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).parent))
+
+from benchmark import errors, run_in_tree  # noqa: E402  (a script beside this one)
+
+from exubrush.rundir import unusable_directory  # noqa: E402
+
+HERE = Path(__file__).parent
+CONTACT = "contact.between_bristles=true"
+NO_CONTACT = "contact.between_bristles=false"
+# filaments and the hole that holds them hexagonally packed (tuft7.toml's packing)
+TUFTS = {7: "0.8 mm", 19: "1.2 mm", 37: "1.6 mm", 61: "2.0 mm"}
+
+
+def _tuft_file(folder: Path, filaments: int) -> str:
+    """tuft7.toml with ``filaments`` in their hole (TUFTS), written into ``folder``."""
+    text = (HERE / "tuft7.toml").read_text()
+    text = text.replace("filaments = 7", f"filaments = {filaments}").replace(
+        'diameter = "0.8 mm"', f'diameter = "{TUFTS[filaments]}"')
+    path = folder / f"tuft{filaments}.toml"
+    path.write_text(text)
+    return str(path)
+
+
+def rows(folder: Path) -> dict[str, dict]:
+    """Each row: its runs as label -> (case, overrides), how its figure is made from their
+    wall times (``figure``), the target and what the figure means."""
+    return {
+        "tuft window": {
+            "runs": {"contact": ("tuft", ["motion.periods=0.1", CONTACT]),
+                     "free": ("tuft", ["motion.periods=0.1", NO_CONTACT])},
+            "figure": lambda w: w["contact"] / w["free"], "target": 3.0,
+            "unit": "x (contact / free)"},
+        "tuft period": {
+            "runs": {"contact": ("tuft", ["motion.periods=1", CONTACT])},
+            "figure": lambda w: w["contact"], "target": 120.0, "unit": "s"},
+        "filaments": {
+            "runs": {f"{n}": (_tuft_file(folder, n), ["motion.periods=0.1"]) for n in TUFTS},
+            "figure": lambda w: (max(w[str(n)] / n for n in TUFTS)
+                                 / min(w[str(n)] / n for n in TUFTS)),
+            "target": 1.5, "unit": "x (largest / smallest s per filament)"},
+        "blade head": {
+            "runs": {"contact": ("orthogonal", ["motion.periods=0.1", CONTACT]),
+                     "free": ("orthogonal", ["motion.periods=0.1"])},
+            "figure": lambda w: w["contact"] / w["free"], "target": 5.0,
+            "unit": "x (contact / free)"},
+        "tooth row": {
+            "runs": {"interdental": ("interdental", ["motion.periods=0.5"]),
+                     "plane": ("orthogonal", ["motion.periods=0.5"])},
+            "figure": lambda w: w["interdental"] / w["plane"], "target": 1.5,
+            "unit": "x (tooth row / plane)"},
+    }
+
+
+def measure(row: dict, code: dict[str, Path], repeat: int) -> list[dict]:
+    """Run every run of ``row`` with every tree of ``code`` ``repeat`` times, trees in
+    turn; one record per run and tree (median wall time, counts, errors against the first
+    tree's forces)."""
+    records = []
+    for label, (case, overrides) in row["runs"].items():
+        walls = {tree: [] for tree in code}
+        first = {}
+        for _ in range(repeat):
+            for tree_label, tree in code.items():
+                results, report = run_in_tree(tree, "simulate", case, overrides, None)
+                walls[tree_label].append(report["wall"])
+                first.setdefault(tree_label, results)
+        reference = first[next(iter(code))]
+        for tree_label in code:
+            results = first[tree_label]
+            meta = results.metadata
+            record = {"run": label, "code": tree_label,
+                      "wall_time_s": statistics.median(walls[tree_label]),
+                      "completed": meta["completed"],
+                      **meta["solver_statistics"],
+                      "deepest_overlap_um": 1e3 * meta["derived"].get("bristle_overlap_max_mm",
+                                                                      0.0)}
+            if results is not reference:
+                record.update({f"vs_{next(iter(code))}_{key}": value for key, value
+                               in errors(results, reference).items()})
+            records.append(record)
+            print(f"  {label} [{tree_label}]: {record['wall_time_s']:.1f} s, "
+                  f"{record['steps']} steps, {record['jacobian_updates']} Jacobians", flush=True)
+    return records
+
+
+def write(out: Path, table: list[dict], runs: list[dict], machine: str) -> None:
+    """contact-cost.md (targets, then every run) and contact-cost.csv (every run)."""
+    lines = [f"# Contact cost ({machine})", "",
+             "| row | code | figure | target | met |", "| --- | --- | --- | --- | --- |"]
+    for entry in table:
+        lines.append(f"| {entry['row']} | {entry['code']} | {entry['figure']:.2f} "
+                     f"{entry['unit']} | {entry['target']:g} | "
+                     f"{'yes' if entry['figure'] <= entry['target'] else 'no'} |")
+    keys = list(dict.fromkeys(key for run in runs for key in run))
+    lines += ["", "| " + " | ".join(keys) + " |", "|" + " --- |" * len(keys)]
+    for run in runs:
+        lines.append("| " + " | ".join(_cell(run.get(key)) for key in keys) + " |")
+    (out / "contact-cost.md").write_text("\n".join(lines) + "\n")
+    with open(out / "contact-cost.csv", "w", newline="") as handle:
+        writer = csv.DictWriter(handle, fieldnames=keys)
+        writer.writeheader()
+        writer.writerows(runs)
+
+
+def _cell(value) -> str:
+    if isinstance(value, float):
+        return f"{value:.4g}"
+    return "" if value is None else str(value)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--only", nargs="*", metavar="ROW",
+                        choices=["tuft window", "tuft period", "filaments", "blade head",
+                                 "tooth row"])
+    parser.add_argument("--repeat", type=int, default=1)
+    parser.add_argument("--code", nargs="+", metavar="LABEL=SOURCE_TREE")
+    parser.add_argument("--out", type=Path,
+                        default=HERE.parent / "results" / "benchmarks")
+    args = parser.parse_args()
+    code = {"this": HERE.resolve().parents[1]}
+    if args.code:
+        pairs = [item.partition("=") for item in args.code]
+        if any(not sep or not label for label, sep, _ in pairs):
+            parser.error("--code takes LABEL=SOURCE_TREE, e.g. old=../exubrush-old")
+        code = {label: Path(tree) for label, _, tree in pairs}
+        for label, tree in code.items():
+            if not (tree / "exubrush" / "__init__.py").is_file():
+                parser.error(f"--code {label}={tree}: no exubrush package in that tree")
+    if not 1 <= args.repeat <= 20:
+        parser.error(f"--repeat {args.repeat}: give 1 to 20 runs per tree")
+    reason = unusable_directory(args.out)
+    if reason:
+        parser.error(f"--out {args.out}: {reason}")
+    args.out.mkdir(parents=True, exist_ok=True)
+    machine = f"{platform.node()}, {os.cpu_count()} cores, Python {platform.python_version()}"
+    table, runs = [], []
+    with tempfile.TemporaryDirectory() as folder:
+        every = rows(Path(folder))
+        for name in args.only or every:
+            row = every[name]
+            print(f"{name} ...", flush=True)
+            records = measure(row, code, args.repeat)
+            runs += [{"row": name, **record} for record in records]
+            for tree_label in code:
+                walls = {r["run"]: r["wall_time_s"] for r in records if r["code"] == tree_label}
+                figure = row["figure"](walls)
+                table.append({"row": name, "code": tree_label, "figure": figure,
+                              "target": row["target"], "unit": row["unit"]})
+                print(f"{name} [{tree_label}]: {figure:.2f} {row['unit']} "
+                      f"(target {row['target']:g})", flush=True)
+            write(args.out, table, runs, machine)
+    print(f"written {args.out}/contact-cost.md")
+
+
+if __name__ == "__main__":
+    main()
