@@ -394,14 +394,12 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
             [0.5 * max(b.width, b.height) for b in bristles], case.contact.bristles)
         scene.keep_alive.append(scene.bristle_contact)
         scene.step_hooks.append(_contact_sampler(scene.bristle_contact, case.output.interval))
-        scene.step_hooks.append(contact_refresh(scene.bristle_contact, case.solver.step_size))
     # touching groups renew the Jacobian at every step attempt anyway (solver.dynamic_settings)
     if scene.bristle_contact is None and linear_solver(case.solver) == "EigenSparse":
         scene.step_hooks.append(fresh_jacobian_after_step_change())
     sliding_step = min(case.solver.sliding_step_factor * case.solver.step_size,
                        case.output.interval)
-    if (scene.bristle_contact is None and case.surface.kind in LARGER_STEP_SURFACES
-            and sliding_step > case.solver.step_size):
+    if case.surface.kind in LARGER_STEP_SURFACES and sliding_step > case.solver.step_size:
         # above the friction law's Stribeck band with a margin, whatever the peak speed
         speed = max(case.solver.sliding_speed_fraction * scene.motion.slide.peak_speed,
                     STRIBECK_MARGIN * case.contact.dynamic_velocity)
@@ -417,6 +415,8 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
         fast = scene.motion.sliding_faster_throughout(speed, ahead, case.solver.step_size)
         scene.step_hooks.append(_sliding_step_cap(fast, case.solver.step_size, sliding_step,
                                                   clear))
+    if scene.bristle_contact is not None:  # after the step cap: it reads the step's cap
+        scene.step_hooks.append(contact_refresh(scene.bristle_contact, case.solver.step_size))
     mbs.Assemble()
     if scene.bristle_contact is not None:
         from exubrush.contact.exudyn_between import locate_in_system
@@ -448,8 +448,9 @@ def _sliding_step_cap(fast, step_size: float, sliding_step: float, clear=None):
     ``fast(t)`` holds (the head slides fast enough from now until a lower cap could take
     hold: HeadMotion.sliding_faster_throughout) and ``clear(mbs)`` holds if given
     (docs/model.md, "Steps in the middle of a stroke"). Only on
-    :data:`LARGER_STEP_SURFACES`, and not for groups of bristles that touch each other:
-    their broad phase is sized for ``step_size``."""
+    :data:`LARGER_STEP_SURFACES`. Groups of bristles that touch each other take them too
+    (since 0.12.0): their broad phase looks as far ahead as the step's cap
+    (exubrush.contact.exudyn_between.contact_refresh)."""
 
     def larger_allowed(mbs, t):
         return fast(t) and (clear is None or clear(mbs))

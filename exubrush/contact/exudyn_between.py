@@ -154,13 +154,25 @@ class BristleContact:
 def contact_refresh(contact: BristleContact, step_size: float, margin: float = 0.1):
     """Step hook: the candidate pairs for the coming step (BristleContact.refresh), with the
     capsules grown by ``margin`` [mm] plus twice the distance the fastest point covers in
-    one largest step ``step_size`` [s] at its current speed: pairs farther apart than
-    that cannot touch before the next refresh, so the force function need not search."""
+    one largest step at its current speed: pairs farther apart than that cannot touch
+    before the next refresh, so the force function need not search. The largest step is
+    the larger of the coming step and the solver's cap for it (larger in the middle of a
+    stroke: scene._sliding_step_cap, which must run before this hook), at least
+    ``step_size`` [s]."""
+    solver_record = [None, None]  # the solver and its iteration record (a live view)
 
     def refresh(mbs, t):
         q_t = np.asarray(mbs.systemData.GetODE2Coordinates_t())[contact.system_indices]
         speed = np.linalg.norm(q_t[contact.coordinates], axis=1).max(initial=0.0)
-        contact.refresh(mbs, margin + 2.0 * speed * step_size)
+        largest = step_size
+        solver = mbs.sys.get("dynamicSolver")
+        if solver is not None:
+            if solver is not solver_record[0]:
+                solver_record[:] = [solver, solver.it]
+            # a cap lowered now takes hold within a few steps: the step may still be larger
+            record = solver_record[1]
+            largest = max(step_size, record.maxStepSize, record.currentStepSize)
+        contact.refresh(mbs, margin + 2.0 * speed * largest)
 
     return refresh
 

@@ -89,3 +89,42 @@ def test_a_tuft_with_contact_is_one_group_and_reports_its_contacts(cli, tmp_path
     # pairs each
     assert derived["bristle_contacts_max"] >= 12
     assert derived["bristle_overlap_max_mm"] < 0.05 * D
+
+
+def test_touching_filaments_take_larger_steps_mid_stroke_and_miss_no_contact(tmp_path):
+    # three filaments pressed together, into the slide: the step grows past
+    # solver.step_size where the head slides fast (the mid-stroke cap, 5x), and the broad
+    # phase, sized for the coming step, still finds every pair that touches at its end
+    import exudyn as exu
+
+    from exubrush.parameters.io import load_case
+    from exubrush.prepared import prepare
+    from exubrush.scene import build_scene
+    from exubrush.solve import group_settings
+
+    case_file = tmp_path / "tuft3.toml"
+    case_file.write_text('name = "tuft3"\n[head]\nlayout = "tufts"\n[[head.tufts]]\n'
+                         'filaments = 3\ndiameter = "0.6 mm"\n[motion]\n'
+                         'interaction_distance = "8.4 mm"\napproach_duration = "0.3 s"\n'
+                         'hold_duration = "0.05 s"\n[contact]\nbetween_bristles = true\n')
+    case = load_case(str(case_file), ["motion.periods=0.15"])
+    prepared = prepare(case)
+    scene = build_scene(prepared, prepared.groups[0])
+    contact = scene.bristle_contact
+    start = exu.ConfigurationType.StartOfStep
+    steps, missed = [], []
+
+    def before_step(mbs, t):
+        if contact.candidate_corners is not None:  # the last step's end against its refresh
+            candidates = set(map(tuple, contact.candidate_corners[0].tolist()))
+            missed.extend(c for c in map(tuple, contact._contacts(mbs).corners.tolist())
+                          if c not in candidates)
+        steps.append(t - mbs.systemData.GetTime(start))
+        return scene.run_step_hooks(mbs, t)
+
+    scene.mbs.SetPreStepUserFunction(before_step)
+    assert scene.mbs.SolveDynamic(group_settings(prepared, scene, prepared.groups[0]),
+                                  storeSolver=True)
+    assert max(contact.counts) > 0
+    assert max(steps) > 2.0 * case.solver.step_size
+    assert missed == []
