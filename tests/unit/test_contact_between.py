@@ -267,6 +267,8 @@ def test_a_groups_compiled_jacobian_is_the_slope_of_its_compiled_forces():
                 slope[:, column] = -(forces(q + move, q_t) - forces(q - move, q_t)) / (2 * step)
             else:
                 slope[:, column] = -(forces(q, q_t + move) - forces(q, q_t - move)) / (2 * step)
-        # both are central differences, of different steps: they agree to the truncation
-        # error of the larger step (the law's curvature times step², far below 1e-6)
-        np.testing.assert_allclose(jacobian, slope, atol=1e-6 * np.abs(slope).max())
+        # the kernel's forward differences (steps 1e-8 mm, 1e-5 mm/s) against central ones:
+        # they agree to the forward difference's truncation error, the law's curvature
+        # times half its step (in the soft zone k/δ ≈ 1.25e4 N/mm² times 5e-9 mm, 1e-6 of
+        # the 50 N/mm stiffness; measured 1e-5 of the largest slope where two terms add up)
+        np.testing.assert_allclose(jacobian, slope, atol=3e-5 * np.abs(slope).max())
