@@ -38,6 +38,10 @@ from exubrush.contact.between_kernel import (
 )
 from exubrush.parameters.case import BristleContactLaw
 
+# how much farther than a step needs [mm] the broad phase looks, so that its pairs serve
+# the next steps too (BristleContact.refresh)
+SKIN = 0.05
+
 
 @dataclass
 class BristleContact:
@@ -66,6 +70,9 @@ class BristleContact:
     # every call
     candidate_corners: tuple | None = None
     law_numbers: np.ndarray = field(init=False)  # the law as the kernels take it
+    # the point positions [mm] and the reach [mm] of the last search (refresh)
+    searched_points: np.ndarray | None = None
+    searched_reach: float = 0.0
 
     def __post_init__(self):
         self.law_numbers = law_vector(self.law)
@@ -118,12 +125,24 @@ class BristleContact:
     def refresh(self, mbs, reach: float) -> None:
         """Before a step: the segment pairs that can touch within it, from the system's
         current (converged) state, their capsules grown by ``reach`` [mm]
-        (:func:`contact_refresh`)."""
+        (:func:`contact_refresh`).
+
+        The pairs are searched again only when the last search no longer covers them (a
+        Verlet list): a pair left out then was more than its reach apart, and no point has
+        moved more than d since, so it is still more than that reach − 2d apart (a
+        segments' distance changes by at most twice its ends' largest move). A new search
+        grows the reach by :data:`SKIN` so that it lasts."""
         q, _ = self._state(mbs)
         points = self.points(q)
-        diverged = not np.all(np.abs(points) < DIVERGED)  # search at every call instead
-        self.candidate_corners = (None if diverged else
-                                  pair_corners(self.chains, self._pairs(points, reach)))
+        if not np.all(np.abs(points) < DIVERGED):  # search at every call instead
+            self.candidate_corners = self.searched_points = None
+            return
+        if self.searched_points is not None and self.candidate_corners is not None:
+            moved = np.sqrt(np.max(np.sum((points - self.searched_points) ** 2, axis=1)))
+            if self.searched_reach - 2.0 * moved >= reach:
+                return
+        self.searched_points, self.searched_reach = points, reach + SKIN
+        self.candidate_corners = pair_corners(self.chains, self._pairs(points, reach + SKIN))
 
     def _contacts(self, mbs):
         """The touching pairs and their corner forces at the system's current state."""
