@@ -8,8 +8,12 @@ A cell passes if it either
 - stopped with status "failed" and a message that names the time and the cause, keeping
   the results up to there (a force beyond the bound stops the run: it is not physics);
 
-and fails if it hangs past the limit, crashes with a traceback, or writes forces beyond
-the bound. The table (CSV and Markdown) is written to ``--out``.
+A cell that writes no ``run.json`` passes only as a refusal: exit status 2 (input that
+cannot be used) and one line on standard error, as the command line promises. It fails if
+it hangs past the limit, crashes with a traceback, is killed (SIGKILL, the out-of-memory
+killer: a negative exit status), ends with no ``run.json`` in any other way (exit 1, or
+exit 2 with more than one line), or writes forces beyond the bound. The table (CSV and
+Markdown) is written to ``--out``.
 
 Usage::
 
@@ -109,12 +113,31 @@ def run_cell(cell: Cell, workdir: Path, limit: float) -> dict:
         return {"cell": cell.name, "outcome": "HANG", "verdict": "FAIL",
                 "wall_s": round(time.perf_counter() - start, 1),
                 "why": f"no result within {limit:g} s"}
-    wall = time.perf_counter() - start
-    row = {"cell": cell.name, "wall_s": round(wall, 1), "exit": done.returncode}
-    if "Traceback" in done.stderr or not (out / "run.json").is_file():
-        last = done.stderr.strip().splitlines()[-1:] or ["no output"]
-        return {**row, "outcome": "crash" if "Traceback" in done.stderr else "refused",
-                "verdict": "FAIL" if "Traceback" in done.stderr else "pass", "why": last[0]}
+    row = {"cell": cell.name, "wall_s": round(time.perf_counter() - start, 1)}
+    return judge(row, done.returncode, done.stderr, out)
+
+
+REFUSED = 2  # the command line's exit status for input that cannot be used (exubrush.cli)
+
+
+def judge(row: dict, status: int, stderr: str, out: Path) -> dict:
+    """The verdict on a finished cell from its exit status, standard error and ``out``."""
+    row = {**row, "exit": status}
+    lines = stderr.strip().splitlines()
+    last = lines[-1] if lines else "no output"
+    if "Traceback" in stderr:
+        return {**row, "outcome": "crash", "verdict": "FAIL", "why": last}
+    if status < 0:  # ended by a signal: SIGKILL, the out-of-memory killer, a segfault
+        return {**row, "outcome": "killed", "verdict": "FAIL",
+                "why": f"killed by signal {-status}; {last}"}
+    if not (out / "run.json").is_file():
+        # a refusal is exit status 2 with one line saying why; anything else that leaves no
+        # run.json (exit 1, several lines, no message) did not end as the command promises
+        refused = status == REFUSED and len(lines) == 1
+        return {**row, "outcome": "refused" if refused else "no result",
+                "verdict": "pass" if refused else "FAIL",
+                "why": last if refused else f"exit {status}, {len(lines)} lines on "
+                                            f"standard error, no run.json; {last}"}
     meta = json.loads((out / "run.json").read_text())
     sanity = meta["sanity"]
     row.update(outcome=meta["status"], simulated_s=round(meta["simulated_time_s"], 3),

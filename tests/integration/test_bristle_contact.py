@@ -37,7 +37,8 @@ def test_a_pushed_filament_shares_its_load_with_its_neighbour_as_beam_theory_say
     contact = (load - GAP / flexibility) / 2.0
     second = tips[1, 0] - (D + GAP)
     first = tips[0, 0]
-    # 1 %: the bound; beam theory neglects the 2 % deflection's geometric effect
+    # 1 %: the accuracy asked of contact between bristles (docs/tufts.md); beam theory
+    # neglects the 2 % deflection's geometric effect
     assert second == pytest.approx(contact * flexibility, rel=0.01)
     assert first == pytest.approx((load - contact) * flexibility, rel=0.01)
     assert pushed.contact_force[0] == pytest.approx(contact, rel=0.01)
@@ -57,8 +58,9 @@ def test_a_filament_pushed_far_shares_its_load_as_the_elastica_says(load):
     assert pushed.completed
     bending = NYLON.youngs_modulus * bristles[0].section.second_moment_y
     exact = touching_cantilevers(L, GAP, D / 2, bending, load, segments=50, load_steps=5)
-    # 1 %: the bound (measured: tips within 0.1 %, contact force 0.9 % at 4 mN, where
-    # the beams touch along their length; the reference's 50 springs add 0.1 %)
+    # 1 %: the accuracy asked of contact between bristles (measured: tips within 0.1 %,
+    # contact force 0.9 % at 4 mN, where the beams touch along their length; the
+    # reference's 50 springs add 0.1 %)
     assert pushed.tips[0, 0] == pytest.approx(exact.tips[0, 0], rel=0.01)
     assert pushed.tips[1, 0] - (D + GAP) == pytest.approx(exact.tips[1, 0] - (D + GAP),
                                                           rel=0.01)

@@ -33,11 +33,14 @@ def test_rotation_vector_nodes_give_the_same_forces(model):
     assert reference.shape == other.shape
     assert np.max(reference[:, 0]) > 0.01  # the tips did press on the plane [N]
     # same model, other coordinates: only the time discretisation differs (2 ms step cap,
-    # Newton rtol 1e-6); on five bristles of the default head the mean F_n differed by 0.1 %.
-    # The run means are compared to 2 % of the largest force, which leaves room for a
-    # stick-slip event shifted by a step
+    # Newton rtol 1e-6), so each run is within the step's own error of the converged forces
+    # and the two within twice that. The step's error, the largest difference of these runs
+    # from the same at 0.5 ms steps (sliding_step_factor 1): 0.8 % (DFM) and 0.65 % (PRB) of
+    # the largest force, at the first snap after the approach; twice 0.8 %, rounded up: 2 %.
+    # Every sample is compared (a mean lets differences of opposite sign cancel); measured
+    # 0.30 % (DFM) and 0.65 % (PRB)
     scale = np.max(np.abs(reference))
-    assert np.max(np.abs(np.mean(other - reference, axis=0))) < 0.02 * scale
+    assert np.max(np.abs(other - reference)) < 0.02 * scale
 
 
 @pytest.mark.parametrize("model, node_type", [("dfm", "RigidBodyEP"),

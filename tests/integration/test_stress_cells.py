@@ -37,3 +37,12 @@ def test_a_diverging_cell_is_judged_by_its_message(tmp_path):
     row = stress_matrix.run_cell(cell, tmp_path, limit=600.0)
     assert row["outcome"] == "failed" and row["verdict"] == "pass", row
     assert "stopped at t = " in row["why"]
+
+
+def test_a_cell_the_command_line_refuses_passes_as_refused(tmp_path):
+    # the command line's refusal (exit 2, one line) is what the matrix accepts without a
+    # run.json: a step that cannot resolve the motion is refused before anything is written
+    cell = stress_matrix.Cell("refused step", ("solver.step_size='20 s'",), periods=0.1)
+    row = stress_matrix.run_cell(cell, tmp_path, limit=600.0)
+    assert (row["outcome"], row["verdict"], row["exit"]) == ("refused", "pass", 2), row
+    assert "does not resolve the motion" in row["why"]

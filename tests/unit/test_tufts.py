@@ -182,7 +182,7 @@ def test_the_manual_brush_is_40_tufts_of_37_filaments_that_reach_each_other():
     case = load_case("manual-brush")
     bristles = head_bristles(case.head)
     assert len(case.head.tufts) == 40 and len(bristles) == 40 * 37
-    # the typical ranges: 20-50 tufts of 20-50 filaments, 0.15-0.25 mm, trim length
+    # the typical ranges of docs/tufts.md: 20-50 tufts of 20-50 filaments, 0.15-0.25 mm, trim length
     # 10-11 mm, holes 1.5-2 mm
     tuft = case.head.tufts[0]
     assert 0.15 <= tuft.width <= 0.25 and 10.0 <= tuft.length + tuft.tip_radius <= 11.0
