@@ -422,20 +422,26 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
         from exubrush.contact.exudyn_between import locate_in_system
 
         locate_in_system(mbs, scene.bristle_contact)
-    _add_line_search(scene, case.solver.line_search)
+    _add_line_search(scene, case.solver.line_search, case.surface.kind)
     return scene
 
 
-def _add_line_search(scene: Scene, setting: str) -> None:
-    """Run Newton's line search (exubrush.newton) as ``solver.line_search`` says: "auto"
-    is "always" in a group of touching bristles (a Newton iteration there costs a
-    Jacobian of the group, the search's Python next to nothing) and "after-cut" elsewhere
-    (one bristle's iteration costs microseconds: the search runs only where Newton has
-    failed), and off where the nodes' rotations are on the Lie group."""
+def _add_line_search(scene: Scene, setting: str, surface: str) -> None:
+    """Run Newton's line search (exubrush.newton) as ``solver.line_search`` says. "auto":
+    "always" in a group of touching bristles (a Newton iteration there costs a Jacobian of
+    the group, the search's Python next to nothing), "after-cut" on a tooth row (the snaps
+    into its gaps: 45 % fewer Jacobians, 7 % less CPU time), off elsewhere (on the plane
+    it saved no Jacobians and cost 5 % CPU time; decisions/0001) and where the nodes'
+    rotations are on the Lie group."""
     if setting == "off" or (setting == "auto" and line_search_applies(scene.mbs)):
         return
     if setting == "auto":
-        setting = "always" if scene.bristle_contact is not None else "after-cut"
+        if scene.bristle_contact is not None:
+            setting = "always"
+        elif surface == "tooth-row":
+            setting = "after-cut"
+        else:
+            return
     scene.line_search = LineSearch()
     if setting == "always":
         scene.mbs.SetPreNewtonResidualUserFunction(scene.line_search)

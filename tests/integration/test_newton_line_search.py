@@ -94,14 +94,16 @@ def test_a_bristle_on_euler_parameters_gives_the_same_forces_with_and_without():
     assert np.max(np.abs(runs[1].normal_force - runs[0].normal_force)) < 1e-8 * peak
 
 
-@pytest.mark.parametrize(("overrides", "expected"), [
-    ([], "after-cut"),  # one DFM bristle
-    (["solver.line_search='off'"], None),
-    (["solver.line_search='always'"], "always"),
-    (["model.kind='prb'"], None),  # rotation vectors: auto leaves it off
+@pytest.mark.parametrize(("case", "overrides", "expected"), [
+    ("orthogonal", [], None),  # one DFM bristle on the plane: auto leaves it off
+    ("interdental", [], "after-cut"),  # on a tooth row: after a cut
+    ("interdental", ["solver.line_search='off'"], None),
+    ("orthogonal", ["solver.line_search='always'"], "always"),
+    ("orthogonal", ["solver.line_search='after-cut'"], "after-cut"),
+    ("interdental", ["model.kind='prb'"], None),  # rotation vectors: auto leaves it off
 ])
-def test_auto_runs_the_search_where_it_applies(overrides, expected):
-    scene = build_scene(prepare(load_case("orthogonal", [*SMALL, *overrides])), (0,))
+def test_auto_runs_the_search_where_it_applies(case, overrides, expected):
+    scene = build_scene(prepare(load_case(case, [*SMALL, *overrides])), (0,))
     assert (scene.line_search is not None) == (expected is not None)
     # "always" sets Exudyn's function now, "after-cut" from a step hook when a step is cut
     assert (scene.mbs.GetPreNewtonResidualUserFunction() != 0) == (expected == "always")
