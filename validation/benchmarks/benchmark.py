@@ -387,6 +387,36 @@ def write_outputs(rows: list[dict], out: Path, stem: str, machine: str) -> None:
     fig.savefig(out / f"pareto-{stem.removeprefix('benchmark-')}.png", dpi=110)
 
 
+def source_trees(parser: argparse.ArgumentParser, items: list[str] | None,
+                 label: str | None) -> dict:
+    """The source trees of ``--code LABEL=SOURCE_TREE ...`` as label -> path, or this tree
+    alone under ``label`` without the option; a malformed item or a tree without an
+    exubrush package ends the script with the parser's one-line error."""
+    if not items:
+        return {label: Path(__file__).resolve().parents[2]}
+    pairs = [item.partition("=") for item in items]
+    if any(not sep or not name for name, sep, _ in pairs):
+        parser.error("--code takes LABEL=SOURCE_TREE, e.g. old=../exubrush-old")
+    code = {name: Path(tree) for name, _, tree in pairs}
+    for name, tree in code.items():
+        if not (tree / "exubrush" / "__init__.py").is_file():
+            parser.error(f"--code {name}={tree}: no exubrush package in that tree")
+    return code
+
+
+def output_folder(parser: argparse.ArgumentParser, out: Path) -> str:
+    """Make the ``--out`` folder (a bad one ends the script with the parser's one-line
+    error) and return the machine's description for the tables."""
+    reason = unusable_directory(out)
+    if reason:
+        parser.error(f"--out {out}: {reason}")
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as err:  # e.g. under /proc, which unusable_directory cannot foresee
+        parser.error(f"--out {out}: {err.strerror or err}")
+    return f"{platform.node()}, {os.cpu_count()} cores, Python {platform.python_version()}"
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--case", default="orthogonal", choices=["orthogonal", "parallel"])
@@ -400,15 +430,7 @@ def main() -> None:
     parser.add_argument("--code", nargs="+", metavar="LABEL=SOURCE_TREE",
                         help="time these exubrush source trees in turn (see the docstring)")
     args = parser.parse_args()
-    code = {None: Path(__file__).resolve().parents[2]}  # this tree
-    if args.code:
-        pairs = [item.partition("=") for item in args.code]
-        if any(not sep or not label for label, sep, _ in pairs):
-            parser.error("--code takes LABEL=SOURCE_TREE, e.g. old=../exubrush-old")
-        code = {label: Path(tree) for label, _, tree in pairs}
-        for label, tree in code.items():
-            if not (tree / "exubrush" / "__init__.py").is_file():
-                parser.error(f"--code {label}={tree}: no exubrush package in that tree")
+    code = source_trees(parser, args.code, None)
     if args.repeat < 1:
         parser.error(f"--repeat {args.repeat}: give 1 or more runs per variant")
     for name in args.only or VARIANTS:  # every case is valid before anything runs
@@ -416,11 +438,7 @@ def main() -> None:
             prepare(load_case(args.case, _overrides(args.head, args.periods, VARIANTS[name])))
         except ParameterError as err:
             parser.error(f"{name}: {err}")
-    reason = unusable_directory(args.out)
-    if reason:
-        parser.error(f"--out {args.out}: {reason}")
-    args.out.mkdir(parents=True, exist_ok=True)
-    machine = f"{platform.node()}, {os.cpu_count()} cores, Python {platform.python_version()}"
+    machine = output_folder(parser, args.out)
     reference = reference_results(args.case, args.head, args.periods, args.out)
     stem = f"benchmark-{args.case}-{args.head}" + (
         "" if args.periods == 1 else f"-{args.periods:g}-periods")

@@ -31,8 +31,6 @@ from __future__ import annotations
 
 import argparse
 import csv
-import os
-import platform
 import statistics
 import sys
 import tempfile
@@ -40,9 +38,12 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).parent))
 
-from benchmark import errors, run_in_tree  # noqa: E402  (a script beside this one)
-
-from exubrush.rundir import unusable_directory  # noqa: E402
+from benchmark import (  # noqa: E402  (a script beside this one)
+    errors,
+    output_folder,
+    run_in_tree,
+    source_trees,
+)
 
 HERE = Path(__file__).parent
 CONTACT = "contact.between_bristles=true"
@@ -158,22 +159,10 @@ def main() -> None:
     parser.add_argument("--out", type=Path,
                         default=HERE.parent / "results" / "benchmarks")
     args = parser.parse_args()
-    code = {"this": HERE.resolve().parents[1]}
-    if args.code:
-        pairs = [item.partition("=") for item in args.code]
-        if any(not sep or not label for label, sep, _ in pairs):
-            parser.error("--code takes LABEL=SOURCE_TREE, e.g. old=../exubrush-old")
-        code = {label: Path(tree) for label, _, tree in pairs}
-        for label, tree in code.items():
-            if not (tree / "exubrush" / "__init__.py").is_file():
-                parser.error(f"--code {label}={tree}: no exubrush package in that tree")
+    code = source_trees(parser, args.code, "this")
     if not 1 <= args.repeat <= 20:
         parser.error(f"--repeat {args.repeat}: give 1 to 20 runs per tree")
-    reason = unusable_directory(args.out)
-    if reason:
-        parser.error(f"--out {args.out}: {reason}")
-    args.out.mkdir(parents=True, exist_ok=True)
-    machine = f"{platform.node()}, {os.cpu_count()} cores, Python {platform.python_version()}"
+    machine = output_folder(parser, args.out)
     table, runs = [], []
     with tempfile.TemporaryDirectory() as folder:
         every = rows(Path(folder))
