@@ -252,7 +252,8 @@ def coupled_warning(case: Case, groups) -> list[str]:
         return []
     return [f"contact.between_bristles: {len(groups)} system(s), the largest of {largest} "
             "bristles that can touch, each solved on one core; contact between bristles is "
-            "slow (7 touching filaments took 35 s per slide period, 4 s without, 0.9.0)"]
+            "slow (7 touching filaments, approach and one period: 92 s of CPU time against "
+            "16 s without, 0.12.0)"]
 
 
 def _refuse(problems: list[str]) -> None:
