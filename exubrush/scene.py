@@ -422,31 +422,29 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
         from exubrush.contact.exudyn_between import locate_in_system
 
         locate_in_system(mbs, scene.bristle_contact)
-    _add_line_search(scene, case.solver.line_search, case.surface.kind)
+    _add_line_search(scene, case.solver.line_search)
     return scene
 
 
-def _add_line_search(scene: Scene, setting: str, surface: str) -> None:
+def _add_line_search(scene: Scene, setting: str) -> None:
     """Run Newton's line search (exubrush.newton) as ``solver.line_search`` says. "auto":
     "always" in a group of touching bristles (a Newton iteration there costs a Jacobian of
-    the group, the search's Python next to nothing), "after-cut" on a tooth row (the snaps
-    into its gaps: 45 % fewer Jacobians, 7 % less CPU time), off elsewhere (on the plane
-    it saved no Jacobians and cost 5 % CPU time; decisions/0001) and where the nodes'
-    rotations are on the Lie group."""
+    the group, the search's Python next to nothing), off elsewhere: one bristle's Jacobian
+    is cheap, and on the tooth row 45 % fewer Jacobians saved 2 % of CPU time while the
+    snaps' paths moved (decisions/0001); off where the nodes' rotations are on the Lie
+    group. "after-cut" runs its switch first among the step hooks, so that the step cap
+    stays the last (it reads the cap the last step set)."""
     if setting == "off" or (setting == "auto" and line_search_applies(scene.mbs)):
         return
     if setting == "auto":
-        if scene.bristle_contact is not None:
-            setting = "always"
-        elif surface == "tooth-row":
-            setting = "after-cut"
-        else:
+        if scene.bristle_contact is None:
             return
+        setting = "always"
     scene.line_search = LineSearch()
     if setting == "always":
         scene.mbs.SetPreNewtonResidualUserFunction(scene.line_search)
     else:
-        scene.step_hooks.append(after_step_cut(scene.line_search))
+        scene.step_hooks.insert(0, after_step_cut(scene.line_search))
 
 
 def _sliding_step_cap(fast, step_size: float, sliding_step: float, clear=None):

@@ -538,8 +538,8 @@ class Solver(Parameters):
         "shorten Newton's updates until the residual falls (a backtracking line search): "
         "always = at every iteration, after-cut = while the step is below its largest after "
         "a cut, off = Exudyn's full updates, auto = always in a group of touching bristles, "
-        "after-cut on a tooth row, off elsewhere and on rotation-vector nodes "
-        "(docs/decisions/0001-newton-line-search.md)",
+        "off elsewhere and on rotation-vector nodes (docs/decisions/"
+        "0001-newton-line-search.md)",
         "text", choices=("auto", "always", "after-cut", "off"),
     )
     linear_solver: str = param(

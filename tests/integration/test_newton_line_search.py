@@ -96,7 +96,8 @@ def test_a_bristle_on_euler_parameters_gives_the_same_forces_with_and_without():
 
 @pytest.mark.parametrize(("case", "overrides", "expected"), [
     ("orthogonal", [], None),  # one DFM bristle on the plane: auto leaves it off
-    ("interdental", [], "after-cut"),  # on a tooth row: after a cut
+    ("interdental", [], None),  # on a tooth row too
+    ("interdental", ["solver.line_search='after-cut'"], "after-cut"),
     ("interdental", ["solver.line_search='off'"], None),
     ("orthogonal", ["solver.line_search='always'"], "always"),
     ("orthogonal", ["solver.line_search='after-cut'"], "after-cut"),
