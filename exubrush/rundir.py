@@ -77,6 +77,14 @@ def recorded_status(directory: Path) -> str | None:
         return None
 
 
+def _unreadable(record: Path) -> bool:
+    """Whether ``record`` (a run.json) is not a JSON object."""
+    try:
+        return not isinstance(json.loads(record.read_text(encoding="utf-8")), dict)
+    except (OSError, ValueError):  # ValueError: not UTF-8 text, not JSON
+        return True
+
+
 class RunDirectoryError(ValueError):
     """The output directory cannot be used for this run without losing or mixing data."""
 
@@ -133,7 +141,10 @@ class RunDirectory:
             if stored == self.fingerprint and not finished:
                 self.resumed = len(self.stored_groups())
                 return
+            record = self.path / "run.json"
             what = ("complete results" if finished else
+                    f"results whose {record} cannot be read (damaged, or not exubrush's)"
+                    if stored is None and record.is_file() and _unreadable(record) else
                     "an unfinished run of another case, or of the same case with other "
                     "input files (e.g. a changed slide CSV)")
             raise RunDirectoryError(

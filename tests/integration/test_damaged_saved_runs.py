@@ -144,6 +144,13 @@ def test_a_damaged_checkpoint_is_named_in_one_line_with_exit_2(solved, tmp_path,
     assert not (run / "run.json").exists()
 
 
+def test_a_run_over_results_with_a_damaged_run_json_names_it(solved, tmp_path):
+    run = _copy(solved, tmp_path)
+    DAMAGES["not JSON"](run / "run.json")
+    message = _refused([*RUN, "--out", run], f"{run / 'run.json'} cannot be read")
+    assert "--overwrite" in message
+
+
 def test_a_checkpoint_file_of_no_group_is_refused(solved, tmp_path):
     run = _copy(solved, tmp_path, "resumable")
     shutil.copy(run / ".checkpoint" / "group-00000.npz", run / ".checkpoint" / "group-00007.npz")
