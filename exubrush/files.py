@@ -1,4 +1,4 @@
-"""Files written whole or not at all."""
+"""Files written whole or not at all, and read back whole or refused."""
 
 from __future__ import annotations
 
@@ -6,8 +6,12 @@ import csv
 import math
 import os
 import tempfile
-from collections.abc import Iterable, Sequence
+import zipfile
+import zlib
+from collections.abc import Iterable, Mapping, Sequence
 from pathlib import Path
+
+import numpy as np
 
 
 class atomic_file:
@@ -47,3 +51,59 @@ def write_csv(path: Path, header: Sequence[str], rows: Iterable[Sequence]) -> No
         writer = csv.writer(handle)
         writer.writerow(header)
         writer.writerows([cell(v) for v in row] for row in rows)
+
+
+class DamagedFile(ValueError):
+    """A file exubrush wrote earlier cannot be read back: truncated, corrupted or foreign."""
+
+
+# What reading a damaged or foreign .npz raises: numpy's format errors and refused pickles
+# (ValueError), zipfile's (BadZipFile; NotImplementedError for an unknown compression,
+# RuntimeError for an encrypted member), zlib's, a member cut short (EOFError), a member
+# that is not there (KeyError), the file system's (OSError), and a header asking for an
+# array larger than memory (MemoryError).
+_NPZ_FAULTS = (OSError, ValueError, EOFError, KeyError, zipfile.BadZipFile, zlib.error,
+               NotImplementedError, RuntimeError, MemoryError)
+
+
+def read_npz(path: str | Path, required: Mapping[str, int | None],
+             optional: Mapping[str, int | None] | None = None) -> dict[str, np.ndarray]:
+    """The arrays of an ``.npz`` archive (numpy.savez), each read whole.
+
+    ``required`` and ``optional`` map each array's name to its number of dimensions, or to
+    None for an array of any shape and type; an array with a number of dimensions must
+    hold numbers (or booleans). Pickled objects are never loaded.
+
+    Raises
+    ------
+    DamagedFile
+        Naming the file and what is wrong: not an .npz archive, truncated or corrupted, an
+        array missing or of the wrong kind.
+    """
+    path = Path(path)
+    name = repr(str(path))
+    optional = optional or {}
+    try:
+        if not zipfile.is_zipfile(path):
+            raise DamagedFile(f"{name}: not a whole .npz archive (cut short, or another "
+                              "kind of file)")
+        with np.load(path, allow_pickle=False) as archive:
+            present = set(archive.files)
+            missing = sorted(set(required) - present)
+            if missing:
+                raise DamagedFile(f"{name}: has no array {missing[0]!r}")
+            arrays = {key: archive[key] for key in {**required, **optional} if key in present}
+    except DamagedFile:
+        raise
+    except _NPZ_FAULTS as err:
+        reason = " ".join(str(err).split())[:200] or type(err).__name__
+        raise DamagedFile(f"{name}: cannot be read ({reason})") from None
+    for key, array in arrays.items():
+        dimensions = {**optional, **required}[key]
+        if dimensions is None:
+            continue
+        numeric = np.issubdtype(array.dtype, np.number) or array.dtype == bool
+        if array.ndim != dimensions or not numeric:
+            raise DamagedFile(f"{name}: array {key!r} is {array.ndim}-dimensional "
+                              f"{array.dtype}, not {dimensions}-dimensional numbers")
+    return arrays

@@ -81,15 +81,24 @@ def load_shapes(directory: str | Path) -> RunShapes:
     # the geometry alone: a saved run's slide CSV may be gone, and its motion is not needed
     bristles = head_bristles(case.head)
     nodes = np.array(results.shape_nodes, dtype=float)
+    if nodes.shape[1] != len(bristles):
+        raise ResultsError(f"{str(Path(directory) / 'shapes.npz')!r} holds {nodes.shape[1]} "
+                           f"bristles, the run's head {len(bristles)}: the file is of another "
+                           "run; make the run again (exubrush run with --overwrite)")
     if meta.get("model") == "prb":
-        gamma = meta["derived"]["prb_gamma"]
+        derived = meta.get("derived")
+        gamma = derived.get("prb_gamma") if isinstance(derived, dict) else None
+        if not isinstance(gamma, int | float) or not 0.0 < gamma <= 1.0:
+            raise ResultsError(f"{str(Path(directory) / 'run.json')!r} of a PRB run has no "
+                               "characteristic radius factor (derived.prb_gamma in (0, 1]): "
+                               "not written by exubrush; make the run again")
         stub = np.array([(1.0 - gamma) * b.length * b.frame[:, 0] for b in bristles])
         pivots = nodes[:, :, :1, :] + stub[None, :, None, :]
         nodes = np.concatenate([nodes[:, :, :1], pivots, nodes[:, :, 1:]], axis=2)
     centre = nodes[:, :, 0, :].mean(axis=1)
     centre[:, 2] = 0.0
     lines = nodes - centre[:, None, None, :]
-    label = f"{meta.get('model', '?').upper()}: {Path(directory).name}"
+    label = f"{str(meta.get('model', '?')).upper()}: {Path(directory).name}"
     try:
         mesh = results.surface_mesh()
     except MeshError:

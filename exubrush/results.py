@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from exubrush.cleaning import TipContacts, cleaning_summary, part_names, touching_geometry
-from exubrush.files import atomic_file, write_csv
+from exubrush.files import atomic_file, read_npz, write_csv
 from exubrush.mesh import MeshError, read_mesh
 from exubrush.metrics import friction_coefficient, travelled_distance
 from exubrush.models.geometry import head_bristles
@@ -185,9 +185,12 @@ class Results:
         try:
             return build(Case, self.metadata["parameters"])
         except (KeyError, ParameterError) as err:
-            made_by = self.metadata.get("versions", {}).get("exubrush", "an unknown version")
-            raise ResultsError(f"the run's parameters are not a valid case for this exubrush "
-                               f"(the run was made by exubrush {made_by}): {err}") from None
+            versions = self.metadata.get("versions")
+            made_by = (versions.get("exubrush", "an unknown version")
+                       if isinstance(versions, dict) else "an unknown version")
+            raise ResultsError(f"the run's parameters (run.json) are not a valid case for this "
+                               f"exubrush (the run was made by exubrush {made_by}): {err}"
+                               ) from None
 
     def _save_metadata(self, directory: Path) -> None:
         with atomic_file(directory / "run.json", "w") as handle:
@@ -196,6 +199,10 @@ class Results:
 
 class ResultsError(ValueError):
     """A result directory is missing, incomplete or not written by exubrush."""
+
+
+# what to do about a result file that cannot be read back
+REMAKE = "; the result directory is damaged: make the run again (exubrush run with --overwrite)"
 
 
 def read_results(directory: str | Path) -> Results:
@@ -221,30 +228,43 @@ def read_results(directory: str | Path) -> Results:
     except UnicodeDecodeError as err:
         raise ResultsError(f"{str(meta_path)!r} is not UTF-8 text (byte {err.start}): not "
                            "written by exubrush") from None
+    if not isinstance(metadata, dict):
+        raise ResultsError(f"{str(meta_path)!r} holds a JSON {type(metadata).__name__}, not "
+                           "the object exubrush writes: not a run record of exubrush")
     if not (directory / "forces.csv").is_file():
         raise ResultsError(f"{str(directory)!r} has no forces.csv (run status "
                            f"{metadata.get('status', 'unknown')!r}): nothing to read")
     units = {name: unit for name, unit in CSV_COLUMNS if name in _SERIES}
     try:
         series = read_unit_table(directory / "forces.csv", units, "result file")
+        shapes = _read_arrays(directory / "shapes.npz", {"time": 1, "nodes": 4},
+                              {"coordinates": 2})
+        tips = _read_arrays(directory / "tips.npz", {"position": 3, "force": 3})
     except ValueError as err:
-        raise ResultsError(str(err)) from None
-    shapes_path = directory / "shapes.npz"
-    if shapes_path.is_file():
-        with np.load(shapes_path) as shapes:
-            shape_time, shape_nodes = shapes["time"], shapes["nodes"]
-            coordinates = shapes["coordinates"] if "coordinates" in shapes else None
-    else:
-        shape_time, shape_nodes = np.zeros(0), np.zeros((0, 0, 0, 3))
-        coordinates = None
-    tips_path = directory / "tips.npz"
-    tip_position = tip_force = None
-    if tips_path.is_file():
-        with np.load(tips_path) as tips:
-            tip_position, tip_force = tips["position"], tips["force"]
-    return Results(**series, shape_time=shape_time, shape_nodes=shape_nodes,
-                   shape_coordinates=coordinates, tip_position=tip_position,
-                   tip_force=tip_force, metadata=metadata)
+        raise ResultsError(f"{err}{REMAKE}") from None
+    if shapes is None:
+        shapes = {"time": np.zeros(0), "nodes": np.zeros((0, 0, 0, 3))}
+    nodes = shapes["nodes"]
+    if nodes.shape[0] != shapes["time"].size or nodes.shape[3] != 3:
+        raise ResultsError(f"{str(directory / 'shapes.npz')!r}: its nodes {nodes.shape} do not "
+                           f"fit {shapes['time'].size} times of 3 coordinates: the file is "
+                           "damaged or of another exubrush version")
+    steps = series["time"].size
+    if tips is not None and not (tips["position"].shape == tips["force"].shape
+                                 and tips["force"].shape[::2] == (steps, 3)):
+        raise ResultsError(f"{str(directory / 'tips.npz')!r}: its arrays "
+                           f"{tips['position'].shape} and {tips['force'].shape} do not fit "
+                           f"{steps} times of forces.csv: the file is damaged or of "
+                           "another run")
+    return Results(**series, shape_time=shapes["time"], shape_nodes=nodes,
+                   shape_coordinates=shapes.get("coordinates"),
+                   tip_position=None if tips is None else tips["position"],
+                   tip_force=None if tips is None else tips["force"], metadata=metadata)
+
+
+def _read_arrays(path: Path, required, optional=None) -> dict[str, np.ndarray] | None:
+    """The arrays of a result's .npz file (files.read_npz), None if there is no such file."""
+    return read_npz(path, required, optional) if path.is_file() else None
 
 
 _SERIES = ("time", "slider_position", "normal_force", "tangential_force", "head_height")

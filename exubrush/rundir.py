@@ -20,6 +20,7 @@ loses at most the groups in progress.
 
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 import json
 import re
@@ -28,7 +29,7 @@ from pathlib import Path
 
 import numpy as np
 
-from exubrush.files import atomic_file
+from exubrush.files import DamagedFile, atomic_file, read_npz
 from exubrush.parameters.fields import to_plain
 from exubrush.prepared import PreparedCase
 from exubrush.provenance import code_identity
@@ -76,8 +77,20 @@ def recorded_status(directory: Path) -> str | None:
         return None
 
 
+def _unreadable(record: Path) -> bool:
+    """Whether ``record`` (a run.json) is not a JSON object."""
+    try:
+        return not isinstance(json.loads(record.read_text(encoding="utf-8")), dict)
+    except (OSError, ValueError):  # ValueError: not UTF-8 text, not JSON
+        return True
+
+
 class RunDirectoryError(ValueError):
     """The output directory cannot be used for this run without losing or mixing data."""
+
+
+class GroupFileError(ValueError):
+    """A finished group's file in the checkpoint does not hold a group of this run."""
 
 
 def case_fingerprint(prepared: PreparedCase) -> str:
@@ -104,6 +117,7 @@ class RunDirectory:
         self.path = Path(path)
         self.checkpoint = self.path / CHECKPOINT
         self.fingerprint = case_fingerprint(prepared)
+        self.group_sizes = [len(group) for group in prepared.groups]
         self.code = code_identity()
         self.resumed = 0
         self._prepare(overwrite)
@@ -119,15 +133,18 @@ class RunDirectory:
                 f"--out {self.path}: holds files exubrush did not write ({', '.join(foreign[:3])}"
                 f"{', ...' if len(foreign) > 3 else ''}); choose a new or empty directory"
             )
-        stored = self._stored_fingerprint()
         if present and not overwrite:
+            stored = self._stored_fingerprint()
             finished = self._finished_run()
             if stored is not None and not finished:
                 self._check_code()
             if stored == self.fingerprint and not finished:
                 self.resumed = len(self.stored_groups())
                 return
+            record = self.path / "run.json"
             what = ("complete results" if finished else
+                    f"results whose {record} cannot be read (damaged, or not exubrush's)"
+                    if stored is None and record.is_file() and _unreadable(record) else
                     "an unfinished run of another case, or of the same case with other "
                     "input files (e.g. a changed slide CSV)")
             raise RunDirectoryError(
@@ -146,9 +163,14 @@ class RunDirectory:
         """Refuse a checkpoint of the same case written by other code."""
         path = self.checkpoint / CODE_FILE
         try:
-            stored = json.loads(path.read_text()) if path.is_file() else None
-        except (OSError, ValueError):
-            stored = None
+            stored = json.loads(path.read_text(encoding="utf-8")) if path.is_file() else None
+        except (OSError, ValueError) as err:  # ValueError: not UTF-8 text, not JSON
+            raise RunDirectoryError(f"--out {self.path}: {path} cannot be read ({err}): the "
+                                    "checkpoint is damaged; pass --overwrite to start "
+                                    "afresh") from None
+        if stored is not None and not isinstance(stored, dict):
+            raise RunDirectoryError(f"--out {self.path}: {path} is not the record exubrush "
+                                    "writes; pass --overwrite to start afresh")
         same = stored is not None and stored.get("exubrush") == self.code["exubrush"] and (
             None in (stored.get("commit"), self.code["commit"])
             or stored.get("commit") == self.code["commit"])
@@ -161,20 +183,61 @@ class RunDirectory:
     def _stored_fingerprint(self) -> str | None:
         path = self.checkpoint / "fingerprint"
         try:
-            return path.read_text().strip() if path.is_file() else None
-        except (OSError, UnicodeDecodeError):  # unreadable: no run to resume
-            return None
+            return path.read_text(encoding="utf-8").strip() if path.is_file() else None
+        except (OSError, UnicodeDecodeError) as err:
+            raise RunDirectoryError(f"--out {self.path}: {path} cannot be read ({err}): the "
+                                    "checkpoint is damaged; pass --overwrite to start "
+                                    "afresh") from None
 
     def _finished_run(self) -> bool:
         return recorded_status(self.path) == "completed"
 
     def stored_groups(self) -> dict[int, GroupSolution]:
-        """Finished groups on disk, by group index."""
+        """Finished groups on disk, by group index.
+
+        Raises
+        ------
+        RunDirectoryError
+            Naming a group file that cannot be read back whole (truncated, corrupted,
+            another format) or that does not fit the run's groups.
+        """
         groups = {}
         for file in sorted(self.checkpoint.glob("group-*.npz")):
-            with np.load(file) as data:
-                groups[int(file.stem.split("-")[1])] = GroupSolution.from_arrays(data)
+            try:
+                groups[self._group_index(file)] = self._read_group(file)
+            except (DamagedFile, GroupFileError) as err:
+                raise RunDirectoryError(
+                    f"--out {self.path}: {err}; delete that file to solve its bristle group "
+                    "again, or pass --overwrite to start afresh") from None
         return groups
+
+    def _group_index(self, file: Path) -> int:
+        index = file.stem.removeprefix("group-")
+        if not index.isdigit() or int(index) >= len(self.group_sizes):
+            raise GroupFileError(f"{str(file)!r} is not a group of this run (it has "
+                                 f"{len(self.group_sizes)} groups, numbered from 00000)")
+        return int(index)
+
+    def _read_group(self, file: Path) -> GroupSolution:
+        arrays = read_npz(file, {"scalars": None, "time": 1, "reaction": 2, "nodes": 4,
+                                 "tip_force": 3}, {"coordinates": 2})
+        if arrays["scalars"].dtype.kind != "U" or arrays["scalars"].ndim != 0:
+            raise GroupFileError(f"{str(file)!r}: its 'scalars' are not one text")
+        try:
+            solution = GroupSolution.from_arrays(arrays)
+        except (ValueError, TypeError, KeyError):  # ValueError: not JSON
+            solution = None
+        if solution is None or not _plain_scalars(solution):
+            raise GroupFileError(f"{str(file)!r}: its 'scalars' are not those of a finished "
+                                 "group of this exubrush")
+        steps, bristles = solution.time.size, self.group_sizes[self._group_index(file)]
+        if not (solution.reaction.shape == (steps, 3)
+                and solution.nodes.shape[:2] == (steps, bristles)
+                and solution.nodes.shape[3] == 3
+                and solution.tip_force.shape == (steps, bristles, 3)):
+            raise GroupFileError(f"{str(file)!r}: its arrays do not fit {steps} times of "
+                                 f"{bristles} bristles: the file is of another run")
+        return solution
 
     def keep(self, index: int, solution: GroupSolution) -> None:
         """Store a finished group atomically (temporary file, then rename)."""
@@ -184,6 +247,15 @@ class RunDirectory:
     def close(self) -> None:
         """Remove the checkpoint once complete results are on disk."""
         shutil.rmtree(self.checkpoint, ignore_errors=True)
+
+
+def _plain_scalars(solution: GroupSolution) -> bool:
+    """Whether a group read back has the scalar types it was written with."""
+    numbers = [getattr(solution, f.name) for f in dataclasses.fields(solution)
+               if f.name not in (*solution.ARRAYS, "statistics", "completed", "message")]
+    numbers += list(dataclasses.astuple(solution.statistics))
+    return (isinstance(solution.completed, bool) and isinstance(solution.message, str)
+            and all(isinstance(n, int | float) and not isinstance(n, bool) for n in numbers))
 
 
 def _temporaries(names: set[str]) -> set[str]:

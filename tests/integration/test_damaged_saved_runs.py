@@ -1,0 +1,249 @@
+"""A saved run's files cut short, corrupted or replaced by foreign ones: every reader of a
+saved run (frames, view, compare, a resumed run, a resumed sweep) ends in one line naming
+the file and exit status 2, never a traceback; property tests damage the files at random.
+
+One small run (a 1 x 2 head, two segments, a fiftieth of a period) is solved once for the
+module, its checkpoint kept: each test damages a copy.
+"""
+
+import json
+import shutil
+
+import pytest
+from click.testing import CliRunner
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from exubrush.cli import main
+
+OVERRIDES = ["model.segments=2", "motion.periods=0.02", "output.solution_file=true",
+             "head.rows=1", "head.columns=2"]
+# the same run on the command line (its checkpoint's fingerprint must match)
+RUN = ["run", "orthogonal", "--segments", "2", "--periods", "0.02", "--viewer", "--quiet",
+       "--set", "head.rows=1", "--set", "head.columns=2"]
+SWEEP = """
+[sweep]
+name = "one"
+base = "orthogonal"
+set = ["head.rows=1", "head.columns=2"]
+[grid]
+"head.seed" = [1]
+"""
+
+
+@pytest.fixture(scope="module")
+def solved(tmp_path_factory):
+    """``saved``: the run's result directory; ``resumable``: its checkpoint alone (as a run
+    stopped after every group finished leaves it)."""
+    from exubrush.parameters.io import load_case
+    from exubrush.prepared import prepare
+    from exubrush.rundir import RunDirectory
+    from exubrush.simulation import simulate
+
+    root = tmp_path_factory.mktemp("damaged")
+    prepared = prepare(load_case("orthogonal", OVERRIDES))
+    store = RunDirectory(root / "resumable", prepared)
+    simulate(prepared, progress=False, directory=store, workers=1).save(root / "saved")
+    assert sorted(p.name for p in store.checkpoint.glob("group-*.npz"))
+    return root
+
+
+def _copy(solved, tmp_path, which="saved"):
+    return shutil.copytree(solved / which, tmp_path / which)
+
+
+def _truncated(path):
+    path.write_bytes(path.read_bytes()[: path.stat().st_size // 2])
+
+
+def _foreign_npz(path):  # another exubrush file in its place
+    path.write_bytes((path.parent / "tips.npz").read_bytes() if path.name == "shapes.npz"
+                     else (path.parent / "shapes.npz").read_bytes())
+
+
+DAMAGES = {
+    "not a zip": lambda path: path.write_text("time,nodes\n0,1\n"),
+    "cut short": _truncated,
+    "empty": lambda path: path.write_bytes(b""),
+    "a JSON list": lambda path: path.write_text("[1, 2, 3]"),
+    "not JSON": lambda path: path.write_text('{"status": "completed", "parame'),
+    "garbage": lambda path: path.write_bytes(bytes(range(256)) * 4),
+    "foreign": _foreign_npz,
+}
+
+
+def _refused(args, named):
+    """The command ends with exit 2 and one line naming the file ``named``."""
+    done = CliRunner().invoke(main, [str(a) for a in args])
+    assert isinstance(done.exception, SystemExit), done.exception  # never a traceback
+    assert done.exit_code == 2, done.output
+    lines = done.output.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("exubrush: error: "), done.output
+    assert named in lines[0], lines[0]
+    return lines[0]
+
+
+@pytest.mark.parametrize(("command", "file", "damage"), [
+    ("frames", "shapes.npz", "not a zip"),
+    ("frames", "run.json", "a JSON list"),
+    ("frames", "tips.npz", "foreign"),
+    ("view", "shapes.npz", "cut short"),
+    ("view", "tips.npz", "empty"),
+    ("compare", "tips.npz", "cut short"),
+    ("compare", "shapes.npz", "foreign"),
+    ("compare", "forces.csv", "garbage"),
+    ("compare", "run.json", "not JSON"),
+])
+def test_a_damaged_result_file_is_named_in_one_line_with_exit_2(solved, tmp_path, command,
+                                                                 file, damage):
+    run = _copy(solved, tmp_path)
+    DAMAGES[damage](run / file)
+    measured = tmp_path / "measured.csv"
+    shutil.copy(run / "forces.csv" if file != "forces.csv" else solved / "saved/forces.csv",
+                measured)
+    args = {"frames": ["frames", run, "--gif-frames", "0", "--out", tmp_path / "frames"],
+            "view": ["view", run, "--write-only"],
+            "compare": ["compare", run, measured, "--out", tmp_path / "compare"]}[command]
+    message = _refused(args, str(run / file))
+    if file != "run.json":
+        assert "make the run again" in message
+
+
+def test_a_prb_run_json_without_its_gamma_is_refused_by_frames(solved, tmp_path):
+    run = _copy(solved, tmp_path)
+    meta = json.loads((run / "run.json").read_text())
+    (run / "run.json").write_text(json.dumps({**meta, "model": "prb", "derived": []}))
+    _refused(["frames", run, "--gif-frames", "0"], str(run / "run.json"))
+
+
+def test_the_intact_checkpoint_resumes(solved, tmp_path):
+    run = _copy(solved, tmp_path, "resumable")
+    done = CliRunner().invoke(main, [*RUN, "--out", str(run)])
+    assert done.exit_code == 0, done.output
+    assert "resuming: 2 finished bristle groups" in done.output
+
+
+@pytest.mark.parametrize(("file", "damage"), [
+    ("group-00000.npz", "cut short"),
+    ("group-00001.npz", "foreign"),
+    ("group-00000.npz", "not a zip"),
+    ("code.json", "not JSON"),
+    ("code.json", "a JSON list"),
+    ("fingerprint", "garbage"),
+])
+def test_a_damaged_checkpoint_is_named_in_one_line_with_exit_2(solved, tmp_path, file,
+                                                               damage):
+    run = _copy(solved, tmp_path, "resumable")
+    checkpoint = run / ".checkpoint"
+    if damage == "foreign":  # the result files of the run in its place
+        shutil.copy(solved / "saved" / "shapes.npz", checkpoint / file)
+    else:
+        DAMAGES[damage](checkpoint / file)
+    message = _refused([*RUN, "--out", run], str(checkpoint / file))
+    assert "--overwrite" in message
+    assert not (run / "run.json").exists()
+
+
+def test_a_run_over_results_with_a_damaged_run_json_names_it(solved, tmp_path):
+    run = _copy(solved, tmp_path)
+    DAMAGES["not JSON"](run / "run.json")
+    message = _refused([*RUN, "--out", run], f"{run / 'run.json'} cannot be read")
+    assert "--overwrite" in message
+
+
+def test_a_checkpoint_file_of_no_group_is_refused(solved, tmp_path):
+    run = _copy(solved, tmp_path, "resumable")
+    shutil.copy(run / ".checkpoint" / "group-00000.npz", run / ".checkpoint" / "group-00007.npz")
+    _refused([*RUN, "--out", run], "group-00007.npz' is not a group of this run")
+
+
+@pytest.mark.parametrize(("file", "damage"), [
+    ("shapes.npz", "cut short"), ("forces.csv", "garbage"), ("run.json", "not JSON")])
+def test_a_resumed_sweep_names_a_damaged_finished_run_before_it_starts(solved, tmp_path,
+                                                                       file, damage):
+    from exubrush.sweep.plan import read_sweep
+    from exubrush.sweep.runner import check_folder, claim_folder
+
+    sweep_file = tmp_path / "one.toml"
+    sweep_file.write_text(SWEEP)
+    plan = read_sweep(sweep_file)
+    folder = tmp_path / "sweep"
+    claim_folder(folder, plan)
+    run = shutil.copytree(solved / "saved", folder / plan.runs[0].name)
+    check_folder(folder, plan)  # intact: accepted
+    DAMAGES[damage](run / file)
+    # refused before a cluster is started: 'local' would take seconds
+    message = _refused(["sweep", sweep_file, "--out", folder, "--quiet"], str(run / file))
+    assert f"delete {run} and run the sweep again" in message
+
+
+# Property tests: any damage to a saved file ends in the file read or one clean error line
+
+
+damages = st.one_of(
+    st.tuples(st.just("cut"), st.floats(0.0, 1.0)),
+    st.tuples(st.just("flip"), st.floats(0.0, 1.0), st.integers(0, 7)),
+    st.tuples(st.just("overwrite"), st.floats(0.0, 1.0), st.binary(min_size=1, max_size=64)),
+    st.tuples(st.just("random"), st.binary(max_size=2000)),
+)
+
+
+def _damaged(data: bytes, damage) -> bytes:
+    """``data`` cut short, a bit flipped, a stretch overwritten, or replaced whole."""
+    kind, *what = damage
+    if kind == "random":
+        return what[0]
+    at = min(int(what[0] * len(data)), len(data) - 1)
+    if kind == "cut":
+        return data[:at]
+    if kind == "flip":
+        return data[:at] + bytes([data[at] ^ (1 << what[1])]) + data[at + 1:]
+    return data[:at] + what[1] + data[at + len(what[1]):]
+
+
+@settings(max_examples=40, deadline=None,
+          suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
+@given(name=st.sampled_from(["run.json", "forces.csv", "shapes.npz", "tips.npz"]),
+       damage=damages)
+def test_any_damaged_result_file_is_read_or_refused_in_one_line(solved, tmp_path, name,
+                                                                damage):
+    from exubrush.frames import load_shapes
+    from exubrush.results import ResultsError, read_results
+    from exubrush.viewer import prepare
+
+    run = tmp_path / "run"
+    shutil.rmtree(run, ignore_errors=True)
+    shutil.copytree(solved / "saved", run)
+    (run / name).write_bytes(_damaged((run / name).read_bytes(), damage))
+    try:
+        read_results(run)
+        load_shapes(run)  # exubrush frames
+        prepare(run)  # exubrush view, up to its solution file
+    except ResultsError as err:
+        assert "\n" not in str(err) and name in str(err), err
+
+
+@pytest.fixture(scope="module")
+def prepared_case():
+    from exubrush.parameters.io import load_case
+    from exubrush.prepared import prepare
+
+    return prepare(load_case("orthogonal", OVERRIDES))
+
+
+@settings(max_examples=30, deadline=None,
+          suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
+@given(name=st.sampled_from(["group-00000.npz", "group-00001.npz"]), damage=damages)
+def test_any_damaged_checkpoint_group_is_read_or_refused_in_one_line(
+        solved, prepared_case, tmp_path, name, damage):
+    from exubrush.rundir import RunDirectory, RunDirectoryError
+
+    run = tmp_path / "resumable"
+    shutil.rmtree(run, ignore_errors=True)
+    shutil.copytree(solved / "resumable", run)
+    path = run / ".checkpoint" / name
+    path.write_bytes(_damaged(path.read_bytes(), damage))
+    try:
+        RunDirectory(run, prepared_case)
+    except RunDirectoryError as err:
+        assert "\n" not in str(err) and name in str(err), err
