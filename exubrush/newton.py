@@ -17,7 +17,7 @@ update is linear in Newton's increment Δ (q −= Δ, q_t −= γ'Δ, q_tt −= 
 the state at α·Δ is exactly the last iterate plus α times (full update − last iterate);
 Exudyn's next update starts from whatever state it finds. Lie-group nodes (rotation
 vectors) keep their own copy of the update and compose rotations: the blend would not be
-what Exudyn continues from, so :func:`line_search_applies` refuses them.
+what Exudyn continues from, so the search is not run on them (:func:`has_lie_group_nodes`).
 
 Exudyn restarts a modified Newton that diverges: it resets the state to the predictor with
 a zero increment and calls the same function; a zero increment marks that call, which then
@@ -126,6 +126,7 @@ class LineSearch:
             return
         settings = mbs.sys["simulationSettings"]
         last, full = self._last, self._state(data)
+        last_residual = solver.conv.residual
         self.counts.checked += 1
         full_residual = solver.ComputeNewtonResidual(mbs, settings)
 
@@ -137,12 +138,12 @@ class LineSearch:
             at[0] = alpha
             return solver.ComputeNewtonResidual(mbs, settings)
 
-        alpha, residual, trials = backtrack(residual_at, solver.conv.residual, full_residual,
+        alpha, residual, trials = backtrack(residual_at, last_residual, full_residual,
                                             self.sufficient, self.shortest)
         self.counts.trials += trials
         if alpha < 1.0:
             self.counts.shortened += 1
-            if not residual <= (1.0 - self.sufficient * alpha) * solver.conv.residual:
+            if not residual <= (1.0 - self.sufficient * alpha) * last_residual:
                 self.counts.insufficient += 1
             if at[0] != alpha:  # the best of the trials was not the last
                 residual_at(alpha)
@@ -153,15 +154,12 @@ class LineSearch:
             self._last = full
 
 
-def line_search_applies(mbs) -> str:
-    """Why a line search cannot run on the assembled system ``mbs`` ("" where it can): a
-    node whose rotation Exudyn updates on the Lie group."""
-    for number in range(mbs.systemData.NumberOfNodes()):
-        kind = mbs.GetNode(number)["nodeType"]
-        if kind.endswith("LG"):  # e.g. RigidBodyRotVecLG
-            return (f"node {number} is of type {kind}, whose rotation Exudyn updates on the "
-                    "Lie group; a line search needs model.rotation = 'euler-parameters'")
-    return ""
+def has_lie_group_nodes(mbs) -> bool:
+    """Whether the assembled system ``mbs`` has a node whose rotation Exudyn updates on the
+    Lie group (e.g. RigidBodyRotVecLG), where a shortened update is not what it continues
+    from."""
+    return any(mbs.GetNode(number)["nodeType"].endswith("LG")
+               for number in range(mbs.systemData.NumberOfNodes()))
 
 
 def after_step_cut(search: LineSearch, margin: float = 0.99):

@@ -34,7 +34,7 @@ from exubrush.models.geometry import BristleGeometry
 from exubrush.models.prb import add_prb_bristle, stub_graphics
 from exubrush.models.stiffness import buckling_load
 from exubrush.motion import HeadMotion
-from exubrush.newton import LineSearch, after_step_cut, line_search_applies
+from exubrush.newton import LineSearch, after_step_cut, has_lie_group_nodes
 from exubrush.parameters.case import COMPILED_SURFACES
 from exubrush.prepared import PreparedCase
 from exubrush.solver import fresh_jacobian_after_step_change, linear_solver, step_cap
@@ -434,12 +434,12 @@ def _add_line_search(scene: Scene, setting: str) -> None:
     snaps' paths moved (decisions/0001); off where the nodes' rotations are on the Lie
     group. "after-cut" runs its switch first among the step hooks, so that the step cap
     stays the last (it reads the cap the last step set)."""
-    if setting == "off" or (setting == "auto" and line_search_applies(scene.mbs)):
-        return
-    if setting == "auto":
-        if scene.bristle_contact is None:
+    if setting == "auto":  # the nodes are looked at only where the search would run
+        if scene.bristle_contact is None or has_lie_group_nodes(scene.mbs):
             return
         setting = "always"
+    if setting == "off":
+        return
     scene.line_search = LineSearch()
     if setting == "always":
         scene.mbs.SetPreNewtonResidualUserFunction(scene.line_search)

@@ -137,7 +137,7 @@ class BristleContact:
         if not np.all(np.abs(points) < DIVERGED):  # search at every call instead
             self.candidate_corners = self.searched_points = None
             return
-        if self.searched_points is not None and self.candidate_corners is not None:
+        if self.searched_points is not None:  # set and cleared with candidate_corners
             moved = np.sqrt(np.max(np.sum((points - self.searched_points) ** 2, axis=1)))
             if self.searched_reach - 2.0 * moved >= reach:
                 return
@@ -178,7 +178,6 @@ def contact_refresh(contact: BristleContact, step_size: float, margin: float = 0
     the larger of the coming step and the solver's cap for it (larger in the middle of a
     stroke: scene._sliding_step_cap, which must run before this hook), at least
     ``step_size`` [s]."""
-    solver_record = [None, None]  # the solver and its iteration record (a live view)
 
     def refresh(mbs, t):
         q_t = np.asarray(mbs.systemData.GetODE2Coordinates_t())[contact.system_indices]
@@ -186,10 +185,8 @@ def contact_refresh(contact: BristleContact, step_size: float, margin: float = 0
         largest = step_size
         solver = mbs.sys.get("dynamicSolver")
         if solver is not None:
-            if solver is not solver_record[0]:
-                solver_record[:] = [solver, solver.it]
             # a cap lowered now takes hold within a few steps: the step may still be larger
-            record = solver_record[1]
+            record = solver.it
             largest = max(step_size, record.maxStepSize, record.currentStepSize)
         contact.refresh(mbs, margin + 2.0 * speed * largest)
 
