@@ -69,20 +69,40 @@ def unusable_directory(path: Path) -> str | None:
     return None
 
 
+def run_record(directory: Path) -> dict | None:
+    """``directory/run.json`` as the object exubrush writes; None if there is no such file.
+
+    Raises
+    ------
+    OSError, ValueError
+        It cannot be read, is not UTF-8 text or not JSON, or is JSON but not an object
+        (ValueError "not a JSON object").
+    """
+    path = directory / "run.json"
+    if not path.is_file():
+        return None
+    record = json.loads(path.read_text(encoding="utf-8"))
+    if not isinstance(record, dict):
+        raise ValueError("not a JSON object")
+    return record
+
+
 def recorded_status(directory: Path) -> str | None:
     """The ``status`` in ``directory/run.json``; None if there is none or it is unreadable."""
     try:
-        return json.loads((directory / "run.json").read_text()).get("status")
-    except (OSError, ValueError, AttributeError):
+        record = run_record(directory)
+    except (OSError, ValueError):
         return None
+    return None if record is None else record.get("status")
 
 
-def _unreadable(record: Path) -> bool:
-    """Whether ``record`` (a run.json) is not a JSON object."""
+def _unreadable_record(directory: Path) -> bool:
+    """Whether ``directory`` has a run.json that is not a readable JSON object."""
     try:
-        return not isinstance(json.loads(record.read_text(encoding="utf-8")), dict)
-    except (OSError, ValueError):  # ValueError: not UTF-8 text, not JSON
+        run_record(directory)
+    except (OSError, ValueError):
         return True
+    return False
 
 
 class RunDirectoryError(ValueError):
@@ -141,10 +161,9 @@ class RunDirectory:
             if stored == self.fingerprint and not finished:
                 self.resumed = len(self.stored_groups())
                 return
-            record = self.path / "run.json"
             what = ("complete results" if finished else
-                    f"results whose {record} cannot be read (damaged, or not exubrush's)"
-                    if stored is None and record.is_file() and _unreadable(record) else
+                    f"results whose {self.path / 'run.json'} cannot be read (damaged, or not "
+                    "exubrush's)" if stored is None and _unreadable_record(self.path) else
                     "an unfinished run of another case, or of the same case with other "
                     "input files (e.g. a changed slide CSV)")
             raise RunDirectoryError(

@@ -34,7 +34,13 @@ from exubrush.parameters.case import Case
 from exubrush.parameters.fields import ParameterError, describe_key
 from exubrush.prepared import PreparedCase, prepare
 from exubrush.results import REMAKE, ResultsError, read_results
-from exubrush.rundir import RunDirectory, recorded_status, safe_name, unusable_directory
+from exubrush.rundir import (
+    RunDirectory,
+    recorded_status,
+    run_record,
+    safe_name,
+    unusable_directory,
+)
 from exubrush.sweep.plan import SweepError, SweepPlan, SweepRun
 from exubrush.sweep.plots import plot_summary
 from exubrush.sweep.summary import METRICS, run_metrics, sensitivities, write_parquet
@@ -118,17 +124,13 @@ def check_folder(folder: Path, plan: SweepPlan) -> None:
 def _check_run_folder(directory: Path) -> None:
     """Refuse (SweepError) a run folder whose run.json, or whose completed results (the
     summary reads them), cannot be read back: the sweep would stop on it later."""
-    record = directory / "run.json"
-    if not record.is_file():
-        return
     remake = f"; delete {directory} and run the sweep again to solve that run anew"
     try:
-        status = json.loads(record.read_text(encoding="utf-8")).get("status")
-    except (OSError, ValueError, AttributeError) as err:  # not text, not JSON, not an object
-        reason = "not a JSON object" if isinstance(err, AttributeError) else err
-        raise SweepError(f"{record}: not a run record of exubrush ({reason}){remake}"
-                         ) from None
-    if status == "completed":
+        record = run_record(directory)
+    except (OSError, ValueError) as err:  # not text, not JSON, not an object
+        raise SweepError(f"{directory / 'run.json'}: not a run record of exubrush ({err})"
+                         f"{remake}") from None
+    if record is not None and record.get("status") == "completed":
         try:
             read_results(directory)
         except ResultsError as err:
