@@ -30,7 +30,6 @@ Output in ``--out``: ``contact-cost.md`` and ``.csv``.
 from __future__ import annotations
 
 import argparse
-import csv
 import statistics
 import sys
 import tempfile
@@ -44,6 +43,8 @@ from benchmark import (  # noqa: E402  (a script beside this one)
     run_in_tree,
     source_trees,
 )
+
+from exubrush.files import write_csv  # noqa: E402
 
 HERE = Path(__file__).parent
 CONTACT = "contact.between_bristles=true"
@@ -137,10 +138,7 @@ def write(out: Path, table: list[dict], runs: list[dict], machine: str) -> None:
     for run in runs:
         lines.append("| " + " | ".join(_cell(run.get(key)) for key in keys) + " |")
     (out / "contact-cost.md").write_text("\n".join(lines) + "\n")
-    with open(out / "contact-cost.csv", "w", newline="") as handle:
-        writer = csv.DictWriter(handle, fieldnames=keys)
-        writer.writeheader()
-        writer.writerows(runs)
+    write_csv(out / "contact-cost.csv", keys, ([run.get(key) for key in keys] for run in runs))
 
 
 def _cell(value) -> str:
