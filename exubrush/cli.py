@@ -12,15 +12,15 @@ from __future__ import annotations
 import contextlib
 import signal
 import sys
+import threading
 from pathlib import Path
 
 import click
-import numpy as np
 
-from exubrush.parameters.fields import ParameterError, to_toml
-from exubrush.parameters.io import load_case
 from exubrush.presets import PRESETS, preset_overrides
-from exubrush.units import UnitError
+
+# Each command imports what it uses (parameters, numpy, Exudyn, matplotlib), so that
+# `exubrush --help` and `exubrush case` start in a fraction of a second.
 
 INPUT_ERROR, RUN_FAILED, INTERRUPTED = 2, 1, 130
 
@@ -93,7 +93,10 @@ def run(case, model, segments, periods, out, overrides, overwrite, quiet, preset
                  f"model.segments={segments}" if segments is not None else None,
                  f"motion.periods={periods}" if periods is not None else None,
                  "output.solution_file=true" if viewer else None]
+    from exubrush.parameters.fields import ParameterError
+    from exubrush.parameters.io import load_case
     from exubrush.prepared import prepare
+    from exubrush.units import UnitError
 
     try:
         prepared = prepare(load_case(case, [*preset_overrides(preset),
@@ -123,6 +126,7 @@ def run(case, model, segments, periods, out, overrides, overwrite, quiet, preset
     # Ctrl-C or SIGTERM while solving: the executor stops the solves, keeps what finished
     # and returns; one that arrives after it (assembling, writing: a second or two) is let
     # pass, so the results are written whole
+    threading.Thread(target=_load_plotting, daemon=True).start()
     try:
         with signals_redirected(signal.SIG_IGN), _executor(scheduler, workers) as executor:
             if executor is not None:
@@ -153,6 +157,17 @@ def run(case, model, segments, periods, out, overrides, overwrite, quiet, preset
     click.echo(f"exubrush: {meta['status']}: {meta['message']}; {saved} (run.json: status "
                f"{meta['status']!r})", err=True)
     sys.exit(INTERRUPTED if meta["status"] == "interrupted" else RUN_FAILED)
+
+
+def _load_plotting() -> None:
+    """Import matplotlib and its PNG writer while the workers solve (the command's process
+    waits for them): about a second of the results' writing, taken off the run's end."""
+    import matplotlib.backends.backend_agg  # noqa: F401 - imported for its side effect
+    from matplotlib import font_manager
+
+    import exubrush.plotting  # noqa: F401
+
+    font_manager.findfont(font_manager.FontProperties())
 
 
 @contextlib.contextmanager
@@ -251,6 +266,10 @@ def sweep(sweep_file, out, scheduler, workers, retry_failed, quiet, example):
               help="Override a parameter before printing.")
 def case(case, overrides):
     """Print CASE as a complete TOML case file, every parameter with its unit."""
+    from exubrush.parameters.fields import ParameterError, to_toml
+    from exubrush.parameters.io import load_case
+    from exubrush.units import UnitError
+
     try:
         click.echo(to_toml(load_case(case, overrides)), nl=False)
     except (ParameterError, UnitError) as err:
@@ -349,6 +368,8 @@ def frames(results_dirs, times, out, gif_frames):
     Give a DFM and a PRB run of the same case to compare them frame by frame. To explore a
     run interactively instead, use 'exubrush run --viewer' and 'exubrush view'.
     """
+    import numpy as np
+
     from exubrush.frames import load_shapes, write_animation, write_frames
     from exubrush.results import ResultsError
 

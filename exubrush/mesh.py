@@ -19,9 +19,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
-from scipy.spatial import cKDTree
+
+if TYPE_CHECKING:
+    from scipy.spatial import cKDTree
 
 # mm per unit of a mesh file
 MESH_UNITS = {"mm": 1.0, "cm": 10.0, "m": 1000.0, "um": 1e-3, "in": 25.4}
@@ -83,6 +86,8 @@ class MeshSurface:
         centroids = triangles.mean(axis=1)
         xy_reach = float(np.max(np.linalg.norm(
             triangles[..., :2] - centroids[:, None, :2], axis=2)))
+        from scipy.spatial import cKDTree  # SciPy's spatial: only where a mesh is read
+
         return cls(triangles, normals, cKDTree(centroids[:, :2]), xy_reach)
 
     def closest(self, point) -> tuple[np.ndarray, np.ndarray, float]:

@@ -20,7 +20,6 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
-from scipy.interpolate import PchipInterpolator
 
 from exubrush.tables import check_time_axis, read_unit_table
 
@@ -103,6 +102,8 @@ class TabulatedSlide:
         if times.ndim != 1 or times.shape != positions.shape or times.size < 2:
             raise ValueError("a slide table needs at least two (time, position) rows")
         check_time_axis(times, positions)
+        from scipy.interpolate import PchipInterpolator  # 0.4-1 s of import: tables only
+
         self._t0 = float(times[0])
         self._spline = PchipInterpolator(times - times[0], positions - positions[0])
         self.duration = float(times[-1] - times[0])

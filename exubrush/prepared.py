@@ -31,7 +31,6 @@ from exubrush.models.stiffness import buckling_load
 from exubrush.motion import HeadMotion, TabulatedSlide, head_motion
 from exubrush.parameters.case import Case
 from exubrush.parameters.fields import ParameterError
-from exubrush.reference.howell_fit import fit_prb_parameters
 from exubrush.sanity import normal_force_bound, static_force_limits
 from exubrush.surfaces import highest_near, to_surface_frame
 
@@ -269,7 +268,9 @@ def prb_parameters(case: Case) -> PrbParameters:
     if source == "explicit":
         return PrbParameters(case.model.prb_gamma, case.model.prb_stiffness_coefficient, None)
     n = case.load_ratio()
-    if source == "fitted":
+    if source == "fitted":  # the elastica's solvers (SciPy's integrate) only here
+        from exubrush.reference.howell_fit import fit_prb_parameters
+
         fit = fit_prb_parameters(n)
         return PrbParameters(fit.gamma, fit.stiffness_coefficient, n)
     return PrbParameters(*howell_parameters(n), n)

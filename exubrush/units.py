@@ -7,14 +7,40 @@ paper's contact coefficients (k in N/mm^1.3, c in N·s/mm³) are used as printed
 Inputs from case files and the command line carry their unit as text, e.g. ``"7.5 MPa"``,
 and are converted with pint. A dimensional input without a unit is refused rather than
 guessed.
+
+pint is imported only where a unit-labelled text is read or an unusual unit converted:
+its import and registry cost about 0.9 s, which ``exubrush case`` and a run of a built-in
+case would otherwise pay for nothing (they read no unit text and show values in the few
+units of :data:`CONVERSION_FACTORS`).
 """
 
 from __future__ import annotations
 
 import functools
 import math
+import re
+from typing import TYPE_CHECKING
 
-import pint
+if TYPE_CHECKING:
+    import pint
+
+# value in unit b = value in unit a x factor, for the units the case parameters declare
+# and display. The factors are pint's own, to the last bit (pint composes them from its
+# definitions: 1.0000000000000002e-12, not 1e-12, for kg/m^3 -> t/mm^3), so that a case
+# reads to the same doubles with or without pint; tests/unit/test_units.py checks each
+# against pint and that every pair the parameters declare is here.
+CONVERSION_FACTORS = {
+    ("rad", "deg"): 57.29577951308232,
+    ("deg", "rad"): 0.017453292519943295,
+    ("s", "ms"): 1000.0,
+    ("ms", "s"): 0.001,
+    ("t/mm^3", "kg/m^3"): 999999999999.9999,
+    ("kg/m^3", "t/mm^3"): 1.0000000000000002e-12,
+    ("B", "GB"): 1e-09,
+    ("GB", "B"): 1000000000.0,
+}
+# "<decimal number> <unit>", the form exubrush writes and its case files use
+_NUMBER_AND_UNIT = re.compile(r"\s*([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)\s+(\S+)\s*")
 
 
 class UnitError(ValueError):
@@ -24,7 +50,21 @@ class UnitError(ValueError):
 @functools.cache
 def registry() -> pint.UnitRegistry:
     """Return the package's pint unit registry (created once)."""
+    import pint
+
     return pint.UnitRegistry()
+
+
+def convert(value: float, unit: str, target: str) -> float:
+    """``value`` in ``unit`` expressed in ``target`` (both pint unit texts), e.g.
+    ``convert(0.5, "s", "ms") == 500.0``; the pairs of :data:`CONVERSION_FACTORS` and equal
+    units without pint."""
+    if unit == target:
+        return float(value)
+    factor = CONVERSION_FACTORS.get((unit, target))
+    if factor is not None:
+        return float(value) * factor
+    return float(registry().Quantity(value, unit).to(target).magnitude)
 
 
 def to_internal(text: str | float | int, unit: str) -> float:
@@ -49,10 +89,18 @@ def to_internal(text: str | float | int, unit: str) -> float:
         If the text has no unit where one is needed, does not parse, or has the wrong
         dimension.
     """
-    ureg = registry()
-    target = ureg.Unit(unit)
     if isinstance(text, bool):
         raise UnitError(f"expected a number, got {text!r}")
+    if isinstance(text, int | float) and unit == "1":
+        return float(text)
+    if isinstance(text, str):
+        known = _known_quantity(text, unit)
+        if known is not None:
+            return known
+    import pint
+
+    ureg = registry()
+    target = ureg.Unit(unit)
     if isinstance(text, int | float):
         if target.dimensionless:
             return float(text)
@@ -75,6 +123,20 @@ def to_internal(text: str | float | int, unit: str) -> float:
         raise UnitError(
             f"{text!r} has unit '{quantity.units:~}', which cannot be converted to '{unit}'"
         ) from None
+
+
+def _known_quantity(text: str, unit: str) -> float | None:
+    """``text`` in ``unit`` where it is a plain "<number> <unit>" whose unit is ``unit`` or
+    converts to it by :data:`CONVERSION_FACTORS` (pint gives the same double); None for
+    anything else, which pint then reads."""
+    match = _NUMBER_AND_UNIT.fullmatch(text)
+    if match is None:
+        return None
+    number, written = float(match[1]), match[2]
+    factor = 1.0 if written == unit else CONVERSION_FACTORS.get((written, unit))
+    if factor is None or not math.isfinite(number):
+        return None
+    return number * factor
 
 
 def format_quantity(value: float, unit: str) -> str:

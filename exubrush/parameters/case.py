@@ -19,9 +19,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field, replace
 
-import numpy as np
-from scipy.spatial import cKDTree
-
 from exubrush.parameters.fields import Parameters, build, param
 
 CONTACT_BACKENDS = ("paper-symbolic", "paper-python", "paper-compiled", "exudyn-builtin")
@@ -233,10 +230,12 @@ class Head(Parameters):
                                  "[[head.materials]] entry of that name")
         if len(self.tufts) < 2:
             return
-        centres = np.array([[tuft.x, tuft.y] for tuft in self.tufts])
-        radii = np.array([0.5 * tuft.diameter for tuft in self.tufts])
+        centres = [(tuft.x, tuft.y) for tuft in self.tufts]
+        radii = [0.5 * tuft.diameter for tuft in self.tufts]
         # candidate pairs from a k-d tree (a head may have thousands of tufts), then exact
-        for i, j in sorted(cKDTree(centres).query_pairs(2.0 * radii.max())):
+        from scipy.spatial import cKDTree  # 0.4 s of import: only where tufts are read
+
+        for i, j in sorted(cKDTree(centres).query_pairs(2.0 * max(radii))):
             gap = math.dist(centres[i], centres[j]) - radii[i] - radii[j]
             if gap < 0.0:
                 raise ValueError(

@@ -17,7 +17,7 @@ from typing import Any
 
 import tomlkit
 
-from exubrush.units import UnitError, format_quantity, registry, to_internal
+from exubrush.units import UnitError, convert, format_quantity, to_internal
 
 
 class ParameterError(ValueError):
@@ -139,7 +139,7 @@ def _bound_text(meta: dict, bound: str) -> str:
     """A range bound written in the unit users see."""
     if meta["unit"] == "1":
         return f"{meta[bound]:g}"
-    magnitude = registry().Quantity(meta[bound], meta["unit"]).to(meta["display"]).magnitude
+    magnitude = convert(meta[bound], meta["unit"], meta["display"])
     return f"{magnitude:g} {meta['display']}"
 
 
@@ -209,7 +209,7 @@ def _display_value(value: Any, meta: dict) -> Any:
     if meta["unit"] in ("1", "text") or isinstance(value, int) and meta["unit"] == "1":
         return value
     display = meta["display"]
-    magnitude = registry().Quantity(value, meta["unit"]).to(display).magnitude
+    magnitude = convert(value, meta["unit"], display)
     return format_quantity(magnitude, display)
 
 

@@ -44,7 +44,7 @@ from exubrush.rundir import (
 from exubrush.sweep.plan import SweepError, SweepPlan, SweepRun
 from exubrush.sweep.plots import plot_summary
 from exubrush.sweep.summary import METRICS, run_metrics, sensitivities, write_parquet
-from exubrush.units import UnitError, registry
+from exubrush.units import UnitError, convert
 
 SWEEP_FILE = "sweep.json"
 SUMMARY_FILES = ("summary.csv", "summary.parquet", "sensitivity.csv")
@@ -250,7 +250,7 @@ def _case_value(case, key: str, unit: str):
     if not unit or isinstance(value, str):
         return value
     _, meta = describe_key(Case, key)
-    return float(registry().Quantity(value, meta["unit"]).to(unit).magnitude)
+    return convert(value, meta["unit"], unit)
 
 
 def write_summary(plan: SweepPlan, states: list[RunState], folder: Path) -> list[str]:
