@@ -211,12 +211,29 @@ def wiped_cells(points: np.ndarray, touching: np.ndarray, half_width: np.ndarray
     reach = int(np.ceil(r.max() / grid)) + 1
     i0, j0 = np.floor(x / grid).astype(np.int64), np.floor(y / grid).astype(np.int64)
     keys = [_cell_key(i0, j0)]
+    # widest patches first: a cell di, dj away from a point's own is at least
+    # (|di| - 1/2, |dj| - 1/2) cells from it, so only the patches wider than that are tested
+    # (the same test on fewer points; a 1e-12 margin keeps round-off on the safe side)
+    order = np.argsort(-r, kind="stable")
+    x, y, r, i0, j0 = x[order], y[order], r[order], i0[order], j0[order]
     for di in range(-reach, reach + 1):
         for dj in range(-reach, reach + 1):
-            inside = np.hypot((i0 + di + 0.5) * grid - x, (j0 + dj + 0.5) * grid - y) <= r
-            keys.append(np.unique(_cell_key(i0[inside] + di, j0[inside] + dj)))
-    unique = np.unique(np.concatenate(keys))
+            nearest = grid * np.hypot(max(abs(di) - 0.5, 0.0), max(abs(dj) - 0.5, 0.0))
+            n = int(np.searchsorted(-r, -nearest * (1.0 - 1e-12), side="right"))
+            if n == 0:
+                continue
+            inside = (np.hypot((i0[:n] + di + 0.5) * grid - x[:n],
+                               (j0[:n] + dj + 0.5) * grid - y[:n]) <= r[:n])
+            keys.append(_distinct(_cell_key(i0[:n][inside] + di, j0[:n][inside] + dj)))
+    unique = _distinct(np.concatenate(keys))
     return np.stack([unique >> 32, (unique & 0xFFFFFFFF) - 2**31], axis=1)
+
+
+def _distinct(keys: np.ndarray) -> np.ndarray:
+    """The distinct values of ``keys``, sorted (np.unique by sorting: NumPy 2.3's hashing
+    np.unique took 0.7 s of a run's 1.1 s of wiped-area cells)."""
+    keys = np.sort(keys)
+    return keys[np.concatenate(([True], keys[1:] != keys[:-1]))] if keys.size else keys
 
 
 def _cell_key(i: np.ndarray, j: np.ndarray) -> np.ndarray:

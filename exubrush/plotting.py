@@ -39,7 +39,8 @@ def plot_forces(results, target) -> None:
                  f"(simulation){partial}")
     for axis in axes:
         axis.grid(True, alpha=0.3)
-    fig.tight_layout()
+    # fixed margins: tight_layout's measuring draw was a third of the run's plotting time
+    fig.subplots_adjust(left=0.11, right=0.97, bottom=0.07, top=0.94, hspace=0.12)
     fig.savefig(target, format="png", dpi=120)
 
 
@@ -169,5 +170,5 @@ def plot_cleaning(results, summary: dict, contacts, target) -> None:
         axis.grid(True, alpha=0.3)
     fig.suptitle(f"exubrush {results.metadata.get('case', '')}: what the brush cleans on the "
                  f"{surface.kind} (simulation)", fontsize=10)
-    fig.tight_layout()
+    fig.subplots_adjust(left=0.07, right=0.98, bottom=0.08, top=0.92, wspace=0.28, hspace=0.32)
     fig.savefig(target, format="png", dpi=110)

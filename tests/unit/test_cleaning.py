@@ -120,3 +120,25 @@ def test_summary_refuses_a_grid_that_is_not_positive():
     with pytest.raises(ValueError, match="grid must be positive"):
         cleaning_summary(Surface(), np.zeros(2), np.zeros(2), np.zeros((2, 1, 3)),
                          np.zeros((2, 1, 3)), [0.4], grid=0.0)
+
+
+def test_wiped_cells_match_a_cell_by_cell_search():
+    """Isolated contacts (no two in a row, so no joining path): every cell whose centre lies
+    in a patch, or that holds a patch's centre, found by testing each cell near each patch."""
+    rng = np.random.default_rng(7)
+    grid, steps, bristles = 0.02, 40, 3
+    points = rng.uniform(-0.3, 0.3, (steps, bristles, 3))
+    touching = np.zeros((steps, bristles), bool)
+    touching[::2] = rng.random((steps // 2, bristles)) < 0.8
+    half_width = rng.uniform(0.0, 0.09, (steps, bristles))
+    expected = set()
+    for t, b in zip(*np.nonzero(touching), strict=True):
+        x, y, r = points[t, b, 0], points[t, b, 1], half_width[t, b]
+        i0, j0 = int(np.floor(x / grid)), int(np.floor(y / grid))
+        expected.add((i0, j0))
+        for i in range(i0 - 8, i0 + 9):
+            for j in range(j0 - 8, j0 + 9):
+                if np.hypot((i + 0.5) * grid - x, (j + 0.5) * grid - y) <= r:
+                    expected.add((i, j))
+    found = {tuple(cell) for cell in wiped_cells(points, touching, half_width, grid).tolist()}
+    assert found == expected
