@@ -2,7 +2,8 @@
 
 The head force is the sum of the groups' forces with the handles' inertia removed
 (:func:`exubrush.kinematics.head_force`); shapes gain their roots; the run record
-(``Results.metadata``) says what was run, by which code, how it went and why it stopped.
+(``Results.metadata``) says what was run, by which code, on which published models and
+laws (exubrush.references), how it went and why it stopped.
 """
 
 from __future__ import annotations
@@ -19,6 +20,7 @@ from exubrush.kinematics import handle_history, head_force
 from exubrush.parameters.fields import to_plain
 from exubrush.prepared import PreparedCase
 from exubrush.provenance import code_identity, package_version
+from exubrush.references import run_references
 from exubrush.results import Results
 from exubrush.solution import GroupSolution, SolverStatistics
 from exubrush.solution_files import head_coordinates
@@ -92,6 +94,7 @@ def assemble_results(prepared: PreparedCase, solutions: Sequence[GroupSolution |
         "derived": _derived(prepared, ran, facts),
         "versions": {**code_identity(), "exudyn": package_version("exudyn"),
                      "exudyn_build": build_in_use(), "python": platform.python_version()},
+        "references": run_references(case),
         "solver_statistics": _statistics(ran),
         "sanity": {"peak_normal_force_N": peak, "normal_force_bound_N": bound,
                    "within_bound": peak <= bound},

@@ -139,7 +139,7 @@ def flat_top_clearance(surface: Surface, x: float, z: float) -> float:
 
 def _tooth_row_features(surface: Surface, x, z, radius, m) -> list:
     u = fold(surface, x, m)
-    found = [_tooth_feature(surface, u, z, m)]
+    found: list[Feature | Choice] = [_tooth_feature(surface, u, z, m)]
     if 2.0 * radius > surface.gap_width:
         pitch = tooth_pitch(surface)
         found.append(_tooth_feature(surface, m.IfThenElse(u >= 0.0, u - pitch, u + pitch), z, m))

@@ -106,7 +106,7 @@ def to_internal(text: str | float | int, unit: str) -> float:
             return float(text)
         raise UnitError(f"{text!r} has no unit; write it with one, e.g. '{text} {unit}'")
     try:
-        quantity = ureg.Quantity(str(text).strip())
+        quantity: pint.Quantity = ureg.Quantity(str(text).strip())
         if not isinstance(quantity, pint.Quantity):
             quantity = ureg.Quantity(quantity)
         magnitude = float(quantity.magnitude)

@@ -16,6 +16,7 @@ zero length, never built), not an exception inside Exudyn's call.
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 from numba import njit
@@ -53,7 +54,7 @@ DIVERGED = 1e6
 POSITION_STEP = 1e-8
 VELOCITY_STEP = 1e-5
 
-_JIT = {"cache": True, "error_model": "numpy", "nogil": True}
+_JIT: dict[str, Any] = {"cache": True, "error_model": "numpy", "nogil": True}
 
 
 @njit(inline="always")

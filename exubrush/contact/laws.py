@@ -4,6 +4,9 @@ Each law is written once against a small "math back end" (exubrush.float_math) s
 the same code runs on floats (``FLOAT_MATH``) and on Exudyn's symbolic expressions
 (``exudyn.symbolic``), which the Exudyn adapter records into a C++ user function.
 
+Sources: the paper's eqs. 14 and 15 (Cellupica et al. 2024, exubrush.references), after
+its refs. [35-37] (Hertz, extended by Flores) and [39-42] (velocity-based friction).
+
 Normal force, Hertz-type penalty with Flores-type damping (the paper's eq. 14)::
 
     F_n = k δ^m1 + c sign(δ') |δ'|^m2 δ^m3,   δ > 0,   F_n clamped at >= 0
@@ -12,10 +15,11 @@ Decision: the surface never pulls. When the damping term outweighs the
 elastic one while the sphere leaves the surface, F_n is clamped to zero rather than
 allowed to become adhesive.
 
-Friction coefficient μ(v), v = |v_t| >= 0: from 0 at v = 0 to μ_s at v_s along the odd
-cubic step that runs from -μ_s at -v_s to +μ_s at +v_s (so μ grows linearly from zero,
-slope 1.5 μ_s / v_s, as in the step-function friction of common multibody codes), then a
-cubic step from μ_s at v_s to μ_d at v_d, and μ_d above. Value and slope are continuous.
+Friction coefficient μ(v) of the paper's eq. 15 (F_t = -μ(v_t) F_n v_t / |v_t|),
+v = |v_t| >= 0: from 0 at v = 0 to μ_s at v_s along the odd cubic step that runs from -μ_s
+at -v_s to +μ_s at +v_s (so μ grows linearly from zero, slope 1.5 μ_s / v_s, as in the
+step-function friction of common multibody codes), then a cubic step from μ_s at v_s to
+μ_d at v_d, and μ_d above. Value and slope are continuous.
 No stiction state: the law is regularised.
 
 Where μ_s > 0 the coefficient is a product μ(v) = μ_rise(v) · r(v): the rise from 0 to μ_s

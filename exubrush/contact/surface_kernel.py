@@ -14,6 +14,7 @@ checks the law against the generic one at random states.
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 from numba import njit
@@ -22,7 +23,7 @@ PLANE, CYLINDER, SPHERE, TOOTH_ROW = 0, 1, 2, 3
 _KINDS = {"plane": PLANE, "cylinder": CYLINDER, "sphere": SPHERE, "tooth-row": TOOTH_ROW}
 _TINY = 1e-300  # as exubrush.surfaces
 MAX_FEATURES = 3
-_JIT = {"cache": True, "error_model": "numpy", "nogil": True}
+_JIT: dict[str, Any] = {"cache": True, "error_model": "numpy", "nogil": True}
 
 
 def law_numbers(law) -> np.ndarray:

@@ -14,6 +14,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from exubrush.models.packing import PackingError, filament_offsets
 from exubrush.models.sections import SectionProperties, section_properties
@@ -23,11 +24,11 @@ from exubrush.parameters.case import BristleEntry, Head, Material
 UPRIGHT_FRAME = np.array([[0.0, 1.0, 0.0], [0.0, 0.0, -1.0], [-1.0, 0.0, 0.0]])
 
 
-def rotation_about(axis: np.ndarray, angle: float) -> np.ndarray:
+def rotation_about(axis: ArrayLike, angle: float) -> np.ndarray:
     """Rotation matrix for ``angle`` [rad] about unit vector ``axis`` (Rodrigues)."""
-    axis = np.asarray(axis, dtype=float)
-    axis = axis / np.linalg.norm(axis)
-    skew = np.array([[0.0, -axis[2], axis[1]], [axis[2], 0.0, -axis[0]], [-axis[1], axis[0], 0.0]])
+    u = np.asarray(axis, dtype=float)
+    u = u / np.linalg.norm(u)
+    skew = np.array([[0.0, -u[2], u[1]], [u[2], 0.0, -u[0]], [-u[1], u[0], 0.0]])
     return np.eye(3) + np.sin(angle) * skew + (1.0 - np.cos(angle)) * skew @ skew
 
 
@@ -123,7 +124,7 @@ def _entries(head: Head) -> list[tuple[BristleEntry, Material, int | None]]:
     if head.layout == "list":
         return [(entry, head.material, None) for entry in head.bristles]
     shape = head.bristle
-    entries = []
+    entries: list[tuple[BristleEntry, Material, int | None]] = []
     for i in range(head.rows):
         for j in range(head.columns):
             entries.append((
@@ -148,7 +149,7 @@ def _filaments(head: Head) -> list[tuple[BristleEntry, Material, int | None]]:
         Naming the tuft whose filaments do not fit in it.
     """
     rng = np.random.default_rng([head.seed, 1])  # apart from the root tilts' stream
-    entries = []
+    entries: list[tuple[BristleEntry, Material, int | None]] = []
     for index, (name, tuft) in enumerate(zip(head.tuft_names(), head.tufts, strict=True)):
         try:
             offsets = filament_offsets(tuft.filaments, tuft.filament_diameter, tuft.diameter,

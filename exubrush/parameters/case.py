@@ -203,7 +203,7 @@ class Head(Parameters):
         that name known materials and do not overlap."""
         if self.layout == "list" and not self.bristles:
             raise ValueError("layout 'list' needs at least one [[head.bristles]] entry")
-        roots = {}
+        roots: dict[tuple[float, float], int] = {}
         for index, entry in enumerate(self.bristles):
             first = roots.setdefault((entry.x, entry.y), index)
             if first != index:

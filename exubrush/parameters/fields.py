@@ -13,6 +13,7 @@ import difflib
 import math
 import tomllib
 import typing
+from collections.abc import Mapping
 from typing import Any
 
 import tomlkit
@@ -75,16 +76,23 @@ def _field_types(cls: type) -> dict[str, Any]:
     return typing.get_type_hints(cls)
 
 
+def _section_class(annotation: Any) -> type | None:
+    """``annotation`` if it is a dataclass (a section or a list's entry), else None."""
+    if isinstance(annotation, type) and dataclasses.is_dataclass(annotation):
+        return annotation
+    return None
+
+
 def _nested_entry_type(annotation: Any) -> type | None:
     """Return E for ``tuple[E, ...]`` with E a dataclass, else None."""
     if typing.get_origin(annotation) is tuple:
         args = typing.get_args(annotation)
-        if args and dataclasses.is_dataclass(args[0]):
-            return args[0]
+        if args:
+            return _section_class(args[0])
     return None
 
 
-def _read_scalar(key: str, value: Any, meta: dict, annotation: Any) -> Any:
+def _read_scalar(key: str, value: Any, meta: Mapping[str, Any], annotation: Any) -> Any:
     unit = meta["unit"]
     if annotation is bool:
         if not isinstance(value, bool):
@@ -104,7 +112,7 @@ def _read_scalar(key: str, value: Any, meta: dict, annotation: Any) -> Any:
         if abs(value) > C_INT:
             raise ParameterError(f"{key}: {value} does not fit a 32-bit integer (at most "
                                  f"{C_INT})")
-        number = value
+        number: float = value
     else:
         if isinstance(value, int | float) and not isinstance(value, bool) and unit != "1":
             example = f"{value} {meta['display']}"
@@ -119,7 +127,7 @@ def _read_scalar(key: str, value: Any, meta: dict, annotation: Any) -> Any:
     return number
 
 
-def _check_range(key: str, number: float, shown: str, meta: dict) -> None:
+def _check_range(key: str, number: float, shown: str, meta: Mapping[str, Any]) -> None:
     """Refuse ``number`` (internal unit) outside the field's range; ``shown`` is how the
     user wrote it."""
     if number != 0 and not MAGNITUDE[0] <= abs(number) <= MAGNITUDE[1]:
@@ -135,7 +143,7 @@ def _check_range(key: str, number: float, shown: str, meta: dict) -> None:
             raise ParameterError(f"{key}: {shown} must be {relation} {_bound_text(meta, bound)}")
 
 
-def _bound_text(meta: dict, bound: str) -> str:
+def _bound_text(meta: Mapping[str, Any], bound: str) -> str:
     """A range bound written in the unit users see."""
     if meta["unit"] == "1":
         return f"{meta[bound]:g}"
@@ -153,9 +161,10 @@ def build(cls: type, data: dict | None, prefix: str = "") -> Any:
         raise ParameterError(f"{prefix.rstrip('.') or 'case'}: expected a table, got {data!r}")
     types = _field_types(cls)
     names = {f.name for f in dataclasses.fields(cls)}
+    renamed = getattr(cls, "RENAMED", {})
     for key in data:
-        if key in getattr(cls, "RENAMED", {}):
-            raise ParameterError(f"{prefix}{key}: {cls.RENAMED[key]}")
+        if key in renamed:
+            raise ParameterError(f"{prefix}{key}: {renamed[key]}")
         if key not in names:
             shown = prefix + key if (prefix + key).isprintable() else repr(prefix + key)
             raise ParameterError(
@@ -166,8 +175,9 @@ def build(cls: type, data: dict | None, prefix: str = "") -> Any:
         key = prefix + f.name
         annotation = types[f.name]
         entry_type = _nested_entry_type(annotation)
-        if dataclasses.is_dataclass(annotation):
-            values[f.name] = build(annotation, data.get(f.name), key + ".")
+        section = _section_class(annotation)
+        if section is not None:
+            values[f.name] = build(section, data.get(f.name), key + ".")
         elif entry_type is not None:
             raw = data.get(f.name, [])
             if not isinstance(raw, list):
@@ -198,14 +208,15 @@ def dotted_keys(cls: type, prefix: str = "") -> list[str]:
     types = _field_types(cls)
     for f in dataclasses.fields(cls):
         annotation = types[f.name]
-        if dataclasses.is_dataclass(annotation):
-            keys += dotted_keys(annotation, prefix + f.name + ".")
+        section = _section_class(annotation)
+        if section is not None:
+            keys += dotted_keys(section, prefix + f.name + ".")
         elif _nested_entry_type(annotation) is None:
             keys.append(prefix + f.name)
     return keys
 
 
-def _display_value(value: Any, meta: dict) -> Any:
+def _display_value(value: Any, meta: Mapping[str, Any]) -> Any:
     if meta["unit"] in ("1", "text") or isinstance(value, int) and meta["unit"] == "1":
         return value
     display = meta["display"]
@@ -215,7 +226,7 @@ def _display_value(value: Any, meta: dict) -> Any:
 
 def to_plain(instance: Any) -> dict:
     """Dataclass -> nested dict of TOML values (quantities as unit-labelled text)."""
-    out = {}
+    out: dict[str, Any] = {}
     types = _field_types(type(instance))
     for f in dataclasses.fields(instance):
         value = getattr(instance, f.name)
@@ -282,7 +293,7 @@ def parse_override(assignment: str) -> tuple[str, Any]:
     return key, value
 
 
-def describe_key(cls: type, key: str, label: str | None = None) -> tuple[Any, dict]:
+def describe_key(cls: type, key: str, label: str | None = None) -> tuple[Any, Mapping[str, Any]]:
     """The type annotation and field metadata (unit, range, choices) of the dotted scalar
     parameter ``key`` of ``cls``; a ParameterError starting with ``label`` (default
     ``--set KEY``) if there is no such parameter, with the nearest names."""
@@ -290,9 +301,10 @@ def describe_key(cls: type, key: str, label: str | None = None) -> tuple[Any, di
     known = dotted_keys(cls)
     *parents, leaf = key.split(".")
     owner = _owner_class(cls, parents)
-    if owner is not None and leaf in getattr(owner, "RENAMED", {}):
-        raise ParameterError(f"{label}: {owner.RENAMED[leaf]}")
-    if key not in known:
+    renamed = getattr(owner, "RENAMED", {})
+    if leaf in renamed:
+        raise ParameterError(f"{label}: {renamed[leaf]}")
+    if key not in known or owner is None:  # no owner: the key is not known either
         close = ([k for k in known if k.split(".")[-1] == key.split(".")[-1]]
                  or difflib.get_close_matches(key, known, n=1))
         hint = f"; did you mean {' or '.join(close)}?" if close else "; see 'exubrush case'"
@@ -314,10 +326,10 @@ def apply_override(data: dict, cls: type, key: str, value: Any) -> None:
 def _owner_class(cls: type, parents: list[str]) -> type | None:
     """The parameter dataclass reached from ``cls`` through the section names ``parents``."""
     for name in parents:
-        annotation = _field_types(cls).get(name)
-        if not dataclasses.is_dataclass(annotation):
+        section = _section_class(_field_types(cls).get(name))
+        if section is None:
             return None
-        cls = annotation
+        cls = section
     return cls
 
 
@@ -329,6 +341,8 @@ class Parameters:
     """
 
     RENAMED: typing.ClassVar[dict[str, str]] = {}
+    if typing.TYPE_CHECKING:  # every subclass is a dataclass; this says so to type checkers
+        __dataclass_fields__: typing.ClassVar[dict[str, dataclasses.Field[Any]]]
 
     def replace(self, **changes: Any) -> Any:
         """A copy with ``changes``, checked like a case file (type, range, choices and the
@@ -354,7 +368,7 @@ class Parameters:
         return _checked(dataclasses.replace(self, **changes), section)
 
 
-def _check_value(key: str, value: Any, meta: dict, annotation: Any) -> None:
+def _check_value(key: str, value: Any, meta: Mapping[str, Any], annotation: Any) -> None:
     """Check a value given in the internal unit (:meth:`Parameters.replace`)."""
     entry_type = _nested_entry_type(annotation)
     if dataclasses.is_dataclass(annotation) or entry_type is not None:

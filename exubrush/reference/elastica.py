@@ -287,8 +287,9 @@ def _default_branch(
     def reached_clamp(_sigma, state):
         return state[0] - angle
 
-    reached_clamp.terminal = True
-    reached_clamp.direction = 1.0
+    # solve_ivp reads an event's options from attributes of the function
+    reached_clamp.terminal = True  # type: ignore[attr-defined]
+    reached_clamp.direction = 1.0  # type: ignore[attr-defined]
 
     def residual(psi_tip: float) -> float:
         # Negative (sigma_clamp - 1) if theta reaches 0 before unit length,

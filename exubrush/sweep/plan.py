@@ -19,6 +19,7 @@ import itertools
 import json
 import math
 import re
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -117,7 +118,9 @@ def read_sweep(path: str | Path) -> SweepPlan:
         if not isinstance(value, dict):
             raise SweepError(f"{where}: {section} must be a table [{section}]")
         allowed = SECTIONS[section]
-        unknown = [key for key in value if allowed is not None and key not in allowed]
+        if allowed is None:
+            continue
+        unknown = [key for key in value if key not in allowed]
         if unknown:
             raise SweepError(f"{where}: [{section}] {unknown[0]}: unknown key; known keys: "
                              f"{', '.join(allowed)}")
@@ -201,7 +204,7 @@ def _seeds(sweep: dict, where: str) -> list[int] | None:
     return seeds
 
 
-def _parameter(key: str, where: str) -> tuple[Any, dict]:
+def _parameter(key: str, where: str) -> tuple[Any, Mapping[str, Any]]:
     """Type and metadata of a parameter a sweep may vary."""
     if key == "name":
         raise SweepError(f"{where}: the case name is not a parameter to vary")
@@ -227,7 +230,7 @@ def _grid_values(key: str, value: Any, where: str, limit: int) -> Varied:
                   [[(key, v)] for v in value])
 
 
-def _range_values(spec: dict, annotation: Any, meta: dict, where: str,
+def _range_values(spec: dict, annotation: Any, meta: Mapping[str, Any], where: str,
                   limit: int) -> tuple[str, list]:
     """Evenly spaced values (linear or logarithmic) of a range, as display-unit texts."""
     unknown = [k for k in spec if k not in RANGE_KEYS]
@@ -243,7 +246,7 @@ def _range_values(spec: dict, annotation: Any, meta: dict, where: str,
     return unit, [_quantity(v, unit) for v in values]
 
 
-def _bounds(spec: dict, annotation: Any, meta: dict, where: str):
+def _bounds(spec: dict, annotation: Any, meta: Mapping[str, Any], where: str):
     """from, to (display unit), scale and unit of a range, checked."""
     if annotation in (bool, int) or meta["unit"] == "text":
         kind = "whole number" if annotation is int else "choice" if meta["unit"] == "text" \
@@ -267,7 +270,7 @@ def _bounds(spec: dict, annotation: Any, meta: dict, where: str):
     return low, high, scale, unit
 
 
-def _magnitude(value: Any, meta: dict, where: str) -> float:
+def _magnitude(value: Any, meta: Mapping[str, Any], where: str) -> float:
     """``value`` (text with a unit, or a number where the parameter has none) in the
     parameter's display unit."""
     try:

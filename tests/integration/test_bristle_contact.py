@@ -9,6 +9,7 @@ import pytest
 from exubrush.models.geometry import BristleGeometry
 from exubrush.models.sections import section_properties
 from exubrush.parameters.case import BUILT_IN_MATERIALS, BristleContactLaw
+from exubrush.references import BRISTLE_CONTACT, FLORES, FRICTION, PAPER
 from exubrush.statics import pushed_pair
 
 D, L, GAP = 0.2, 10.0, 0.01  # mm: nylon filaments 10 mm long, 10 µm apart
@@ -84,7 +85,10 @@ def test_a_tuft_with_contact_is_one_group_and_reports_its_contacts(cli, tmp_path
                     'hold_duration = "0.05 s"\n[contact]\nbetween_bristles = true\n')
     done = cli("run", str(case), "--periods", "0.02", "--quiet", "--out", str(tmp_path / "r"))
     assert done.returncode == 0, done.stderr
-    derived = json.loads((tmp_path / "r" / "run.json").read_text())["derived"]
+    record = json.loads((tmp_path / "r" / "run.json").read_text())
+    assert [r["key"] for r in record["references"]] == [
+        r.key for r in (PAPER, FLORES, FRICTION, BRISTLE_CONTACT)]
+    derived = record["derived"]
     assert derived["bristle_groups"] == [list(range(7))]
     assert derived["systems_solved"] == 1
     # seven hexagonal filaments touching all along: 12 neighbour pairs, several segment

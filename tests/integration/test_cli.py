@@ -6,6 +6,8 @@ import tomllib
 
 import pytest
 
+from exubrush.references import FLORES, FRICTION, HOWELL, PAPER, TIMOSHENKO_GERE
+
 REQUIRED_COLUMNS = ["time [s]", "slider_position [mm]", "travelled_distance [mm]",
                     "normal_force [N]", "tangential_force [N]", "friction_coefficient [-]"]
 
@@ -25,6 +27,11 @@ def test_small_run_writes_complete_results(cli, tmp_path):
     assert {"exubrush", "exudyn", "python"} <= set(meta["versions"])
     assert meta["parameters"]["motion"]["direction"] == "parallel"
     assert meta["solver_statistics"]["steps"] > 0 and meta["wall_time_s"] > 0
+    # a PRB run with the buckling link on a surface: the paper, its contact laws, Howell,
+    # Timoshenko & Gere
+    assert meta["references"] == [r.record() for r in
+                                  (PAPER, FLORES, FRICTION, HOWELL, TIMOSHENKO_GERE)]
+    assert meta["references"][0]["doi"] == PAPER.doi
     assert (out / "forces.png").stat().st_size > 10_000
 
 

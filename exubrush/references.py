@@ -1,0 +1,94 @@
+"""The publications exubrush's models rest on, and which of them a run relied on.
+
+Each run records the references its models and laws come from in run.json
+(``references``, :func:`run_references`). README.md ("How to cite"), docs/model.md
+("References") and CITATION.cff give the same text; tests/unit/test_references.py keeps
+them equal.
+
+The contact laws of the tip on the surface are the paper's (its eqs. 14 and 15); their
+sources are entries of the paper's bibliography, cited here through the paper. The
+contact between bristles is exubrush's own law, with no published source.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:  # reads the case's attributes only: no import at run time
+    from exubrush.parameters.case import Case
+
+
+@dataclass(frozen=True)
+class Reference:
+    """One source: ``citation`` as text to cite, ``doi`` where the source has one that
+    could be checked (None otherwise), ``used_for`` what exubrush takes from it."""
+
+    key: str
+    citation: str
+    used_for: str
+    doi: str | None = None
+
+    def record(self) -> dict[str, str]:
+        """The entry as run.json holds it (no ``doi`` key where there is none)."""
+        entry = {"key": self.key, "citation": self.citation, "used_for": self.used_for}
+        return entry if self.doi is None else {**entry, "doi": self.doi}
+
+
+PAPER = Reference(
+    "cellupica2024",
+    "Cellupica, A., D'Angelo, L., Cirelli, M., Mazur, M., Valentini, P.P.: Flexible "
+    "multibody approaches for simulating the deflection and contact mechanics of "
+    "toothbrush bristles: modelling and testing. Multibody System Dynamics (2024)",
+    "the PRB and DFM bristle models, the tip-surface contact and friction laws (eqs. 14, "
+    "15) with the parameters of table 2, the orthogonal and parallel brushing cases",
+    doi="10.1007/s11044-024-09985-1",
+)
+FLORES = Reference(
+    "flores-penalty",
+    "Flores's extension of the Hertz penalty law, as Cellupica et al. (2024) give it: "
+    "their eq. 14, after their refs. [35-37]",
+    "the normal force of a tip on the surface",
+)
+FRICTION = Reference(
+    "velocity-friction",
+    "The velocity-based friction law of Cellupica et al. (2024): their eq. 15, after "
+    "their refs. [39-42]",
+    "the friction of a tip on the surface",
+)
+HOWELL = Reference(
+    "howell2001",
+    "Howell, L.L.: Compliant Mechanisms. Wiley, New York (2001)",
+    "the PRB model's characteristic pivot and stiffness, gamma and K_theta (table 5.1; "
+    "the paper's table 1, its ref. [20])",
+)
+TIMOSHENKO_GERE = Reference(
+    "timoshenko1961",
+    "Timoshenko, S.P., Gere, J.M.: Theory of Elastic Stability, 2nd edn. McGraw-Hill, "
+    "New York (1961)",
+    "the buckling load of the PRB link, a column clamped at the root and pinned at the "
+    "tip (section 2.5)",
+)
+BRISTLE_CONTACT = Reference(
+    "exubrush-bristle-contact",
+    "exubrush's own law of contact between bristles: docs/tufts.md, 'Contact between "
+    "bristles' (no published source)",
+    "the contact between bristles",
+)
+
+LITERATURE = (PAPER, HOWELL, TIMOSHENKO_GERE)
+"""The references that are publications (the others point into the paper or the docs)."""
+
+
+def run_references(case: Case) -> list[dict[str, str]]:
+    """The references a run of ``case`` relied on, as run.json records them: the paper and
+    its contact laws always (every tip touches the surface), Howell for PRB and Timoshenko
+    & Gere for its buckling link, exubrush's law where bristles touch each other."""
+    used = [PAPER, FLORES, FRICTION]
+    if case.model.kind == "prb":
+        used.append(HOWELL)
+        if case.model.prb_link == "buckling":
+            used.append(TIMOSHENKO_GERE)
+    if case.contact.between_bristles:
+        used.append(BRISTLE_CONTACT)
+    return [reference.record() for reference in used]
