@@ -37,8 +37,9 @@ from exubrush.motion import HeadMotion
 from exubrush.newton import LineSearch, after_step_cut, has_lie_group_nodes
 from exubrush.parameters.case import COMPILED_SURFACES
 from exubrush.prepared import PreparedCase
-from exubrush.solver import fresh_jacobian_after_step_change, linear_solver, step_cap
-from exubrush.surfaces import flat_top_clearance, orientation, tooth_pitch
+from exubrush.solver import fresh_jacobian_after_step_change, linear_solver
+from exubrush.step_policy import sliding_step_cap
+from exubrush.surfaces import orientation, tooth_pitch
 
 if TYPE_CHECKING:
     from exubrush.contact.exudyn_between import BristleContact
@@ -49,15 +50,6 @@ if TYPE_CHECKING:
 HANDLE_SIZE = (20.0, 8.0, 3.0)  # mm
 HANDLE_DENSITY = 1.2e-9  # t/mm³ (acrylic-like)
 BUILTIN_FORCE_SIGN = 1.0
-# where the step may grow in the middle of a stroke, which is steady sliding on a plane,
-# cylinder or sphere; on a tooth row tips snap off edges into gaps, so there only while
-# every tip is over a tooth's flat top (_tips_on_flat_tops); a mesh (which may be a tooth
-# row) keeps step_size
-LARGER_STEP_SURFACES = ("plane", "cylinder", "sphere", "tooth-row")
-# the larger steps also need the slide at this multiple of the tip law's v_d or faster:
-# where the tips' slip enters the Stribeck band (below v_d) Newton's trouble starts; the
-# default fraction 0.3 of the paper's 7.85 mm/s is 1.57 v_d
-STRIBECK_MARGIN = 1.5
 
 
 @dataclass
@@ -397,24 +389,9 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
     # touching groups renew the Jacobian at every step attempt anyway (solver.dynamic_settings)
     if scene.bristle_contact is None and linear_solver(case.solver) == "EigenSparse":
         scene.step_hooks.append(fresh_jacobian_after_step_change())
-    sliding_step = min(case.solver.sliding_step_factor * case.solver.step_size,
-                       case.output.interval)
-    if case.surface.kind in LARGER_STEP_SURFACES and sliding_step > case.solver.step_size:
-        # above the friction law's Stribeck band with a margin, whatever the peak speed
-        speed = max(case.solver.sliding_speed_fraction * scene.motion.slide.peak_speed,
-                    STRIBECK_MARGIN * case.contact.dynamic_velocity)
-        # how long a lower cap may take to hold: the step in progress and up to
-        # solver.step_recovery_steps - 1 more stay large (step_cap); two steps of margin,
-        # for a step that took more than Exudyn's 7 Newton iterations where the step would
-        # be changed (it defers the change)
-        ahead = (case.solver.step_recovery_steps + 2) * sliding_step
-        clear = None
-        if case.surface.kind == "tooth-row":
-            clear = _tips_on_flat_tops(case.surface, tips, ahead,
-                                       scene.motion.slide.peak_speed)
-        fast = scene.motion.sliding_faster_throughout(speed, ahead, case.solver.step_size)
-        scene.step_hooks.append(_sliding_step_cap(fast, case.solver.step_size, sliding_step,
-                                                  clear))
+    cap = sliding_step_cap(case, scene.motion, tips)
+    if cap is not None:
+        scene.step_hooks.append(cap)
     if scene.bristle_contact is not None:  # after the step cap: it reads the step's cap
         scene.step_hooks.append(contact_refresh(scene.bristle_contact, case.solver.step_size))
     mbs.Assemble()
@@ -445,49 +422,6 @@ def _add_line_search(scene: Scene, setting: str) -> None:
         scene.mbs.SetPreNewtonResidualUserFunction(scene.line_search)
     else:
         scene.step_hooks.insert(0, after_step_cut(scene.line_search))
-
-
-def _sliding_step_cap(fast, step_size: float, sliding_step: float, clear=None):
-    """Step hook letting the step grow from ``step_size`` to ``sliding_step`` [s] while
-    ``fast(t)`` holds (the head slides fast enough from now until a lower cap could take
-    hold: HeadMotion.sliding_faster_throughout) and ``clear(mbs)`` holds if given
-    (docs/model.md, "Steps in the middle of a stroke"). Only on
-    :data:`LARGER_STEP_SURFACES`. Groups of bristles that touch each other take them too
-    (since 0.12.0): their broad phase looks as far ahead as the step's cap
-    (exubrush.contact.exudyn_between.contact_refresh)."""
-
-    def larger_allowed(mbs, t):
-        return fast(t) and (clear is None or clear(mbs))
-
-    return step_cap(step_size, sliding_step, larger_allowed)
-
-
-def _tips_on_flat_tops(surface, tips: list, ahead: float, speed: float):
-    """``clear(mbs)`` for :func:`_sliding_step_cap` on a tooth row: whether every tip
-    (node, sphere radius [mm]) lies over the flat part of a tooth top with room along the
-    row, before the rounded edges begin, for its radius and its travel over ``ahead`` [s]
-    at ``speed`` (the head's peak [mm/s]) or at its own speed along the row if faster (so
-    that no large step carries it onto an edge or into a gap;
-    exubrush.surfaces.flat_top_clearance)."""
-    # the along-row coordinate of exubrush.surfaces.to_surface_frame, in plain arithmetic:
-    # this runs for every tip and step
-    cosine, sine = np.cos(surface.yaw), np.sin(surface.yaw)
-    position = exu.OutputVariableType.Position
-    velocity = exu.OutputVariableType.Velocity
-
-    def clear(mbs):
-        for node, radius in tips:
-            x, y, z = mbs.GetNodeOutput(node, position)
-            room = flat_top_clearance(surface, cosine * (x - surface.x)
-                                      + sine * (y - surface.y), z) - radius
-            if room < ahead * speed:
-                return False
-            vx, vy, _ = mbs.GetNodeOutput(node, velocity)
-            if room < ahead * abs(cosine * vx + sine * vy):
-                return False
-        return True
-
-    return clear
 
 
 def _polyline(bristle: BristleGeometry, nodes, gamma: float | None) -> list:
