@@ -27,6 +27,7 @@ from exubrush.contact.exudyn_contact import (
     surface_marker,
 )
 from exubrush.contact.laws import builtin_contact_parameters, drop_can_lag
+from exubrush.contact.tip_force import contact_force_output
 from exubrush.mesh import frame_with_normal
 from exubrush.models.assembly import rigid_marker
 from exubrush.models.dfm import add_dfm_bristle
@@ -49,7 +50,6 @@ if TYPE_CHECKING:
 # (exubrush.kinematics.head_force)
 HANDLE_SIZE = (20.0, 8.0, 3.0)  # mm
 HANDLE_DENSITY = 1.2e-9  # t/mm³ (acrylic-like)
-BUILTIN_FORCE_SIGN = 1.0
 
 
 @dataclass
@@ -245,15 +245,6 @@ def lags_friction_drop(case) -> bool:
             and drop_can_lag(case.contact))
 
 
-def _contact_force_output(case):
-    """The contact's force output: the user-function connector's ForceLocal (surface frame,
-    minus the force on the tip) or the built-in contact's Force (on the tip, head frame);
-    a compiled contact records its object's Force (force_on_tip)."""
-    if case.contact.backend == "exudyn-builtin":
-        return exu.OutputVariableType.Force
-    return exu.OutputVariableType.ForceLocal
-
-
 def _tangent_plane_refresh(mesh, surface, planes):
     """A step hook that puts each tip's contact frame on the mesh's tangent plane at the
     point closest to the tip's centre (origin there, z along the contact's outward
@@ -271,23 +262,6 @@ def _tangent_plane_refresh(mesh, surface, planes):
             mbs.SetMarkerParameter(marker, "localHT", frame)
 
     return refresh
-
-
-def force_on_tip(case, values: np.ndarray, frames: np.ndarray | None = None,
-                 compiled: bool = False) -> np.ndarray:
-    """The contact force on a tip [N], head frame, from its contact sensor's values (n, 3):
-    minus the user-function connector's ForceLocal turned out of the connector's frame
-    (the surface frame, or on a mesh the recorded rotation matrices ``frames``, rows of 9),
-    or the built-in contact's Force as it is (its sign checked in
-    tests/integration/test_tip_forces.py), or, ``compiled``, minus the first three of the
-    compiled contact's Force (its generalized forces' left-hand side, head frame)."""
-    if compiled:
-        return -values
-    if case.contact.backend == "exudyn-builtin":
-        return BUILTIN_FORCE_SIGN * values
-    if frames is not None:
-        return -np.einsum("nij,nj->ni", frames.reshape(-1, 3, 3), values)
-    return -values @ orientation(case.surface).T
 
 
 def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None,
@@ -362,7 +336,7 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
             else:
                 sensor = eii.SensorObject(objectNumber=contact, storeInternal=True,
                                           writeToFile=False,
-                                          outputVariableType=_contact_force_output(case))
+                                          outputVariableType=contact_force_output(case))
             scene.contact_sensors.append((index, mbs.AddSensor(sensor), frame_sensor,
                                           compiled))
     scene.keep_alive.extend(laws.values())

@@ -17,10 +17,11 @@ from typing import Protocol
 import exudyn as exu
 import numpy as np
 
+from exubrush.contact.tip_force import force_on_tip
 from exubrush.newton import LineSearch
 from exubrush.prepared import PreparedCase
 from exubrush.sanity import beyond_bound_message
-from exubrush.scene import Scene, build_scene, force_on_tip
+from exubrush.scene import Scene, build_scene
 from exubrush.solution import INTERRUPTED, GroupSolution, SolverStatistics
 from exubrush.solution_files import read_coordinate_file
 from exubrush.solver import dynamic_settings, record_coordinates
