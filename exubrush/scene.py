@@ -9,7 +9,7 @@ drive reactions and the bristle nodes.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, NamedTuple
 
 import exudyn as exu
 import exudyn.graphics as graphics
@@ -52,6 +52,38 @@ HANDLE_SIZE = (20.0, 8.0, 3.0)  # mm
 HANDLE_DENSITY = 1.2e-9  # t/mm³ (acrylic-like)
 
 
+class ContactSensor(NamedTuple):
+    """The sensors that record one tip contact's force (exubrush.contact.tip_force)."""
+
+    bristle: int  # index of the bristle in the scene
+    force: int  # sensor of the contact's force
+    frame: int | None  # sensor of the contact frame's rotation matrix where it moves (a mesh)
+    compiled: bool  # whether the contact is the compiled law (its object's Force)
+
+
+class TangentPlane(NamedTuple):
+    """A tip on a mesh surface and the marker of the tangent plane it meets."""
+
+    node: int  # the tip node
+    marker: int  # the marker of its contact frame, moved before every step
+
+
+class LaggedContact(NamedTuple):
+    """A tip contact that reads a lagged friction drop
+    (exubrush.contact.exudyn_contact.lagged_drop_hook)."""
+
+    connector: int
+    tip_radius: float  # mm
+
+
+class CompiledContact(NamedTuple):
+    """The compiled law of a tip contact (contact.backend "paper-compiled";
+    exubrush.contact.exudyn_contact.add_compiled_tip_contact)."""
+
+    item: int  # its ObjectGenericODE2
+    drops: np.ndarray  # the drop ratios that object reads
+
+
 @dataclass
 class Scene:
     """An assembled Exudyn system and the indices needed to read it."""
@@ -65,18 +97,13 @@ class Scene:
     drive_sensors: list = field(default_factory=list)
     node_sensors: list = field(default_factory=list)
     contacts: list = field(default_factory=list)
-    # (index of the bristle in the scene, sensor of its contact's force, sensor of the
-    # contact frame's rotation matrix where that frame moves (a mesh), else None, whether
-    # the contact is compiled: force_on_tip)
-    contact_sensors: list = field(default_factory=list)
+    contact_sensors: list[ContactSensor] = field(default_factory=list)
     keep_alive: list = field(default_factory=list)
-    # (tip node, marker of its tangent plane) of each tip on a mesh surface
-    tangent_planes: list = field(default_factory=list)
-    # (connector, tip radius) of the tip contacts that read a lagged friction drop
-    lagged_contacts: list = field(default_factory=list)
-    # connector -> (the object of its compiled contact, the drop ratios that object
-    # reads), where contact.backend "paper-compiled" applies (add_compiled_tip_contact)
-    compiled_contacts: dict = field(default_factory=dict)
+    # each tip on a mesh surface
+    tangent_planes: list[TangentPlane] = field(default_factory=list)
+    lagged_contacts: list[LaggedContact] = field(default_factory=list)
+    # connector -> its compiled law, where contact.backend "paper-compiled" applies
+    compiled_contacts: dict[int, CompiledContact] = field(default_factory=dict)
     ground: int = 0
     # callables (mbs, t) that the solve must call before every step
     step_hooks: list = field(default_factory=list)
@@ -204,7 +231,7 @@ def _add_contact(scene: Scene, prepared: PreparedCase, surface_marker_number, ti
     if case.surface.kind == "mesh":
         # far below until the first step puts it on the tangent plane
         surface_marker_number = rigid_marker(scene.mbs, scene.ground, [0.0, 0.0, -1e3])
-        scene.tangent_planes.append((tip_node, surface_marker_number))
+        scene.tangent_planes.append(TangentPlane(tip_node, surface_marker_number))
     lagged = lags_friction_drop(case)
     if bristle.tip_radius not in laws:
         laws[bristle.tip_radius] = contact_user_function(
@@ -212,13 +239,13 @@ def _add_contact(scene: Scene, prepared: PreparedCase, surface_marker_number, ti
     contact = add_tip_contact(scene.mbs, surface_marker_number, tip_body,
                               laws[bristle.tip_radius], lagged)
     if lagged:
-        scene.lagged_contacts.append((contact, bristle.tip_radius))
+        scene.lagged_contacts.append(LaggedContact(contact, bristle.tip_radius))
     if compiles_contact(case, scene.mbs, tip_node):
         item, drops, functions = add_compiled_tip_contact(
             scene.mbs, contact, tip_node, case.surface, case.contact, bristle.tip_radius,
             window, lagged)
         scene.keep_alive.append(functions)
-        scene.compiled_contacts[contact] = (item, drops)
+        scene.compiled_contacts[contact] = CompiledContact(item, drops)
     return contact
 
 
@@ -326,25 +353,25 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
             frame_sensor = None
             if len(scene.tangent_planes) > planes:  # the frame moves: record it with the force
                 frame_sensor = mbs.AddSensor(eii.SensorMarker(
-                    markerNumber=scene.tangent_planes[-1][1], storeInternal=True,
+                    markerNumber=scene.tangent_planes[-1].marker, storeInternal=True,
                     writeToFile=False, outputVariableType=exu.OutputVariableType.RotationMatrix))
             compiled = contact in scene.compiled_contacts
             if compiled:  # an object, not a connector
-                sensor = eii.SensorBody(bodyNumber=scene.compiled_contacts[contact][0],
+                sensor = eii.SensorBody(bodyNumber=scene.compiled_contacts[contact].item,
                                         storeInternal=True, writeToFile=False,
                                         outputVariableType=exu.OutputVariableType.Force)
             else:
                 sensor = eii.SensorObject(objectNumber=contact, storeInternal=True,
                                           writeToFile=False,
                                           outputVariableType=contact_force_output(case))
-            scene.contact_sensors.append((index, mbs.AddSensor(sensor), frame_sensor,
-                                          compiled))
+            scene.contact_sensors.append(ContactSensor(index, mbs.AddSensor(sensor),
+                                                       frame_sensor, compiled))
     scene.keep_alive.extend(laws.values())
     if scene.tangent_planes:
         scene.step_hooks.append(_tangent_plane_refresh(prepared.mesh, case.surface,
                                                        scene.tangent_planes))
     if scene.lagged_contacts:  # after the tangent planes: it reads the contacts' frames
-        drops = {contact: ratios for contact, (_, ratios) in scene.compiled_contacts.items()}
+        drops = {contact: law.drops for contact, law in scene.compiled_contacts.items()}
         scene.step_hooks.append(lagged_drop_hook(scene.lagged_contacts, case.contact,
                                                  law_surface(case), drops))
     window = prepared.friction_window
