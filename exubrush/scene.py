@@ -36,7 +36,7 @@ from exubrush.models.prb import add_prb_bristle, stub_graphics
 from exubrush.models.stiffness import buckling_load
 from exubrush.motion import HeadMotion
 from exubrush.newton import LineSearch, after_step_cut, has_lie_group_nodes
-from exubrush.parameters.case import COMPILED_SURFACES
+from exubrush.parameters.surface_kinds import SURFACE_KIND
 from exubrush.prepared import PreparedCase
 from exubrush.solver import fresh_jacobian_after_step_change, linear_solver
 from exubrush.step_policy import sliding_step_cap
@@ -202,15 +202,17 @@ def surface_graphics(surface, size: float, mesh=None) -> list:
     if surface.kind == "sphere":
         return [graphics.Sphere(point=(top + [0.0, 0.0, -surface.radius]).tolist(),
                                 radius=surface.radius, color=grey, nTiles=32)]
-    pitch = tooth_pitch(surface)
-    drawn = [graphics.CheckerBoard(point=[0.0, 0.0, -surface.gap_depth],
-                                   normal=[0.0, 0.0, 1.0], size=size)]
-    for k in range(-int(0.5 * size / pitch) - 1, int(0.5 * size / pitch) + 2):
-        centre = top + turn @ [k * pitch, 0.0, -0.5 * surface.gap_depth]
-        box = turn @ [surface.tooth_width, size, surface.gap_depth]
-        drawn.append(graphics.Brick(centerPoint=centre.tolist(), size=np.abs(box).tolist(),
-                                    color=grey))
-    return drawn
+    if surface.kind == "tooth-row":
+        pitch = tooth_pitch(surface)
+        drawn = [graphics.CheckerBoard(point=[0.0, 0.0, -surface.gap_depth],
+                                       normal=[0.0, 0.0, 1.0], size=size)]
+        for k in range(-int(0.5 * size / pitch) - 1, int(0.5 * size / pitch) + 2):
+            centre = top + turn @ [k * pitch, 0.0, -0.5 * surface.gap_depth]
+            box = turn @ [surface.tooth_width, size, surface.gap_depth]
+            drawn.append(graphics.Brick(centerPoint=centre.tolist(),
+                                        size=np.abs(box).tolist(), color=grey))
+        return drawn
+    raise ValueError(f"surface kind {surface.kind!r} has no graphics")
 
 
 def _add_contact(scene: Scene, prepared: PreparedCase, surface_marker_number, tip_body,
@@ -253,7 +255,8 @@ def compiles_contact(case, mbs, tip_node) -> bool:
     """Whether the tip's contact is the compiled law (contact.backend "paper-compiled"
     where it is built: a tip node with Euler parameters over a curved analytic surface);
     elsewhere that backend is the symbolic law."""
-    return (case.contact.backend == "paper-compiled" and case.surface.kind in COMPILED_SURFACES
+    return (case.contact.backend == "paper-compiled"
+            and SURFACE_KIND[case.surface.kind].compiled
             and mbs.GetNode(tip_node)["nodeType"] == "RigidBodyEP")
 
 
@@ -261,7 +264,7 @@ def law_surface(case):
     """The surface the tip law is written for: None for the plane law, which a plane and a
     mesh (in a frame on its tangent plane, moved before every step) both use, else the
     case's analytic surface (exubrush.surfaces.features)."""
-    return None if case.surface.kind in ("plane", "mesh") else case.surface
+    return None if SURFACE_KIND[case.surface.kind].plane_law else case.surface
 
 
 def lags_friction_drop(case) -> bool:

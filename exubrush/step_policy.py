@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING
 import exudyn as exu
 import numpy as np
 
+from exubrush.parameters.surface_kinds import SURFACE_KIND
 from exubrush.solver import step_cap
 from exubrush.surfaces import flat_top_clearance
 
@@ -21,11 +22,6 @@ if TYPE_CHECKING:
     from exubrush.motion import HeadMotion
     from exubrush.parameters.case import Case, Surface
 
-# where the step may grow in the middle of a stroke, which is steady sliding on a plane,
-# cylinder or sphere; on a tooth row tips snap off edges into gaps, so there only while
-# every tip is over a tooth's flat top (tips_on_flat_tops); a mesh (which may be a tooth
-# row) keeps step_size
-LARGER_STEP_SURFACES = ("plane", "cylinder", "sphere", "tooth-row")
 # the larger steps also need the slide at this multiple of the tip law's v_d or faster:
 # where the tips' slip enters the Stribeck band (below v_d) Newton's trouble starts; the
 # default fraction 0.3 of the paper's 7.85 mm/s is 1.57 v_d
@@ -39,12 +35,12 @@ def sliding_step_cap(case: Case, motion: HeadMotion, tips: list):
     (HeadMotion.sliding_faster_throughout) and, on a tooth row, every tip of ``tips``
     (node, sphere radius [mm]) is over a flat top (:func:`tips_on_flat_tops`); None where
     the step never grows: a sliding step no larger than ``step_size``, or a surface kind
-    not in :data:`LARGER_STEP_SURFACES`. Groups of bristles that touch each other take
-    them too (since 0.12.0): their broad phase looks as far ahead as the step's cap
-    (exubrush.contact.exudyn_between.contact_refresh)."""
+    without them (SurfaceKind.larger_steps, exubrush.parameters.surface_kinds). Groups of
+    bristles that touch each other take them too (since 0.12.0): their broad phase looks
+    as far ahead as the step's cap (exubrush.contact.exudyn_between.contact_refresh)."""
     solver = case.solver
     sliding_step = min(solver.sliding_step_factor * solver.step_size, case.output.interval)
-    if not (case.surface.kind in LARGER_STEP_SURFACES and sliding_step > solver.step_size):
+    if not (SURFACE_KIND[case.surface.kind].larger_steps and sliding_step > solver.step_size):
         return None
     # above the friction law's Stribeck band with a margin, whatever the peak speed
     speed = max(solver.sliding_speed_fraction * motion.slide.peak_speed,
