@@ -9,7 +9,7 @@ drive reactions and the bristle nodes.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, NamedTuple
 
 import exudyn as exu
 import exudyn.graphics as graphics
@@ -27,6 +27,7 @@ from exubrush.contact.exudyn_contact import (
     surface_marker,
 )
 from exubrush.contact.laws import builtin_contact_parameters, drop_can_lag
+from exubrush.contact.tip_force import contact_force_output
 from exubrush.mesh import frame_with_normal
 from exubrush.models.assembly import rigid_marker
 from exubrush.models.dfm import add_dfm_bristle
@@ -35,10 +36,11 @@ from exubrush.models.prb import add_prb_bristle, stub_graphics
 from exubrush.models.stiffness import buckling_load
 from exubrush.motion import HeadMotion
 from exubrush.newton import LineSearch, after_step_cut, has_lie_group_nodes
-from exubrush.parameters.case import COMPILED_SURFACES
+from exubrush.parameters.surface_kinds import SURFACE_KIND
 from exubrush.prepared import PreparedCase
-from exubrush.solver import fresh_jacobian_after_step_change, linear_solver, step_cap
-from exubrush.surfaces import flat_top_clearance, orientation, tooth_pitch
+from exubrush.solver import fresh_jacobian_after_step_change, linear_solver
+from exubrush.step_policy import sliding_step_cap
+from exubrush.surfaces import orientation, tooth_pitch
 
 if TYPE_CHECKING:
     from exubrush.contact.exudyn_between import BristleContact
@@ -48,16 +50,38 @@ if TYPE_CHECKING:
 # (exubrush.kinematics.head_force)
 HANDLE_SIZE = (20.0, 8.0, 3.0)  # mm
 HANDLE_DENSITY = 1.2e-9  # t/mm³ (acrylic-like)
-BUILTIN_FORCE_SIGN = 1.0
-# where the step may grow in the middle of a stroke, which is steady sliding on a plane,
-# cylinder or sphere; on a tooth row tips snap off edges into gaps, so there only while
-# every tip is over a tooth's flat top (_tips_on_flat_tops); a mesh (which may be a tooth
-# row) keeps step_size
-LARGER_STEP_SURFACES = ("plane", "cylinder", "sphere", "tooth-row")
-# the larger steps also need the slide at this multiple of the tip law's v_d or faster:
-# where the tips' slip enters the Stribeck band (below v_d) Newton's trouble starts; the
-# default fraction 0.3 of the paper's 7.85 mm/s is 1.57 v_d
-STRIBECK_MARGIN = 1.5
+
+
+class ContactSensor(NamedTuple):
+    """The sensors that record one tip contact's force (exubrush.contact.tip_force)."""
+
+    bristle: int  # index of the bristle in the scene
+    force: int  # sensor of the contact's force
+    frame: int | None  # sensor of the contact frame's rotation matrix where it moves (a mesh)
+    compiled: bool  # whether the contact is the compiled law (its object's Force)
+
+
+class TangentPlane(NamedTuple):
+    """A tip on a mesh surface and the marker of the tangent plane it meets."""
+
+    node: int  # the tip node
+    marker: int  # the marker of its contact frame, moved before every step
+
+
+class LaggedContact(NamedTuple):
+    """A tip contact that reads a lagged friction drop
+    (exubrush.contact.exudyn_contact.lagged_drop_hook)."""
+
+    connector: int
+    tip_radius: float  # mm
+
+
+class CompiledContact(NamedTuple):
+    """The compiled law of a tip contact (contact.backend "paper-compiled";
+    exubrush.contact.exudyn_contact.add_compiled_tip_contact)."""
+
+    item: int  # its ObjectGenericODE2
+    drops: np.ndarray  # the drop ratios that object reads
 
 
 @dataclass
@@ -73,18 +97,13 @@ class Scene:
     drive_sensors: list = field(default_factory=list)
     node_sensors: list = field(default_factory=list)
     contacts: list = field(default_factory=list)
-    # (index of the bristle in the scene, sensor of its contact's force, sensor of the
-    # contact frame's rotation matrix where that frame moves (a mesh), else None, whether
-    # the contact is compiled: force_on_tip)
-    contact_sensors: list = field(default_factory=list)
+    contact_sensors: list[ContactSensor] = field(default_factory=list)
     keep_alive: list = field(default_factory=list)
-    # (tip node, marker of its tangent plane) of each tip on a mesh surface
-    tangent_planes: list = field(default_factory=list)
-    # (connector, tip radius) of the tip contacts that read a lagged friction drop
-    lagged_contacts: list = field(default_factory=list)
-    # connector -> (the object of its compiled contact, the drop ratios that object
-    # reads), where contact.backend "paper-compiled" applies (add_compiled_tip_contact)
-    compiled_contacts: dict = field(default_factory=dict)
+    # each tip on a mesh surface
+    tangent_planes: list[TangentPlane] = field(default_factory=list)
+    lagged_contacts: list[LaggedContact] = field(default_factory=list)
+    # connector -> its compiled law, where contact.backend "paper-compiled" applies
+    compiled_contacts: dict[int, CompiledContact] = field(default_factory=dict)
     ground: int = 0
     # callables (mbs, t) that the solve must call before every step
     step_hooks: list = field(default_factory=list)
@@ -183,15 +202,17 @@ def surface_graphics(surface, size: float, mesh=None) -> list:
     if surface.kind == "sphere":
         return [graphics.Sphere(point=(top + [0.0, 0.0, -surface.radius]).tolist(),
                                 radius=surface.radius, color=grey, nTiles=32)]
-    pitch = tooth_pitch(surface)
-    drawn = [graphics.CheckerBoard(point=[0.0, 0.0, -surface.gap_depth],
-                                   normal=[0.0, 0.0, 1.0], size=size)]
-    for k in range(-int(0.5 * size / pitch) - 1, int(0.5 * size / pitch) + 2):
-        centre = top + turn @ [k * pitch, 0.0, -0.5 * surface.gap_depth]
-        box = turn @ [surface.tooth_width, size, surface.gap_depth]
-        drawn.append(graphics.Brick(centerPoint=centre.tolist(), size=np.abs(box).tolist(),
-                                    color=grey))
-    return drawn
+    if surface.kind == "tooth-row":
+        pitch = tooth_pitch(surface)
+        drawn = [graphics.CheckerBoard(point=[0.0, 0.0, -surface.gap_depth],
+                                       normal=[0.0, 0.0, 1.0], size=size)]
+        for k in range(-int(0.5 * size / pitch) - 1, int(0.5 * size / pitch) + 2):
+            centre = top + turn @ [k * pitch, 0.0, -0.5 * surface.gap_depth]
+            box = turn @ [surface.tooth_width, size, surface.gap_depth]
+            drawn.append(graphics.Brick(centerPoint=centre.tolist(),
+                                        size=np.abs(box).tolist(), color=grey))
+        return drawn
+    raise ValueError(f"surface kind {surface.kind!r} has no graphics")
 
 
 def _add_contact(scene: Scene, prepared: PreparedCase, surface_marker_number, tip_body,
@@ -212,7 +233,7 @@ def _add_contact(scene: Scene, prepared: PreparedCase, surface_marker_number, ti
     if case.surface.kind == "mesh":
         # far below until the first step puts it on the tangent plane
         surface_marker_number = rigid_marker(scene.mbs, scene.ground, [0.0, 0.0, -1e3])
-        scene.tangent_planes.append((tip_node, surface_marker_number))
+        scene.tangent_planes.append(TangentPlane(tip_node, surface_marker_number))
     lagged = lags_friction_drop(case)
     if bristle.tip_radius not in laws:
         laws[bristle.tip_radius] = contact_user_function(
@@ -220,13 +241,13 @@ def _add_contact(scene: Scene, prepared: PreparedCase, surface_marker_number, ti
     contact = add_tip_contact(scene.mbs, surface_marker_number, tip_body,
                               laws[bristle.tip_radius], lagged)
     if lagged:
-        scene.lagged_contacts.append((contact, bristle.tip_radius))
+        scene.lagged_contacts.append(LaggedContact(contact, bristle.tip_radius))
     if compiles_contact(case, scene.mbs, tip_node):
         item, drops, functions = add_compiled_tip_contact(
             scene.mbs, contact, tip_node, case.surface, case.contact, bristle.tip_radius,
             window, lagged)
         scene.keep_alive.append(functions)
-        scene.compiled_contacts[contact] = (item, drops)
+        scene.compiled_contacts[contact] = CompiledContact(item, drops)
     return contact
 
 
@@ -234,7 +255,8 @@ def compiles_contact(case, mbs, tip_node) -> bool:
     """Whether the tip's contact is the compiled law (contact.backend "paper-compiled"
     where it is built: a tip node with Euler parameters over a curved analytic surface);
     elsewhere that backend is the symbolic law."""
-    return (case.contact.backend == "paper-compiled" and case.surface.kind in COMPILED_SURFACES
+    return (case.contact.backend == "paper-compiled"
+            and SURFACE_KIND[case.surface.kind].compiled
             and mbs.GetNode(tip_node)["nodeType"] == "RigidBodyEP")
 
 
@@ -242,7 +264,7 @@ def law_surface(case):
     """The surface the tip law is written for: None for the plane law, which a plane and a
     mesh (in a frame on its tangent plane, moved before every step) both use, else the
     case's analytic surface (exubrush.surfaces.features)."""
-    return None if case.surface.kind in ("plane", "mesh") else case.surface
+    return None if SURFACE_KIND[case.surface.kind].plane_law else case.surface
 
 
 def lags_friction_drop(case) -> bool:
@@ -251,15 +273,6 @@ def lags_friction_drop(case) -> bool:
     where the law's friction falls (μ_s > μ_d)."""
     return (case.solver.friction_drop == "lagged" and case.contact.backend != "exudyn-builtin"
             and drop_can_lag(case.contact))
-
-
-def _contact_force_output(case):
-    """The contact's force output: the user-function connector's ForceLocal (surface frame,
-    minus the force on the tip) or the built-in contact's Force (on the tip, head frame);
-    a compiled contact records its object's Force (force_on_tip)."""
-    if case.contact.backend == "exudyn-builtin":
-        return exu.OutputVariableType.Force
-    return exu.OutputVariableType.ForceLocal
 
 
 def _tangent_plane_refresh(mesh, surface, planes):
@@ -279,23 +292,6 @@ def _tangent_plane_refresh(mesh, surface, planes):
             mbs.SetMarkerParameter(marker, "localHT", frame)
 
     return refresh
-
-
-def force_on_tip(case, values: np.ndarray, frames: np.ndarray | None = None,
-                 compiled: bool = False) -> np.ndarray:
-    """The contact force on a tip [N], head frame, from its contact sensor's values (n, 3):
-    minus the user-function connector's ForceLocal turned out of the connector's frame
-    (the surface frame, or on a mesh the recorded rotation matrices ``frames``, rows of 9),
-    or the built-in contact's Force as it is (its sign checked in
-    tests/integration/test_tip_forces.py), or, ``compiled``, minus the first three of the
-    compiled contact's Force (its generalized forces' left-hand side, head frame)."""
-    if compiled:
-        return -values
-    if case.contact.backend == "exudyn-builtin":
-        return BUILTIN_FORCE_SIGN * values
-    if frames is not None:
-        return -np.einsum("nij,nj->ni", frames.reshape(-1, 3, 3), values)
-    return -values @ orientation(case.surface).T
 
 
 def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None,
@@ -360,25 +356,25 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
             frame_sensor = None
             if len(scene.tangent_planes) > planes:  # the frame moves: record it with the force
                 frame_sensor = mbs.AddSensor(eii.SensorMarker(
-                    markerNumber=scene.tangent_planes[-1][1], storeInternal=True,
+                    markerNumber=scene.tangent_planes[-1].marker, storeInternal=True,
                     writeToFile=False, outputVariableType=exu.OutputVariableType.RotationMatrix))
             compiled = contact in scene.compiled_contacts
             if compiled:  # an object, not a connector
-                sensor = eii.SensorBody(bodyNumber=scene.compiled_contacts[contact][0],
+                sensor = eii.SensorBody(bodyNumber=scene.compiled_contacts[contact].item,
                                         storeInternal=True, writeToFile=False,
                                         outputVariableType=exu.OutputVariableType.Force)
             else:
                 sensor = eii.SensorObject(objectNumber=contact, storeInternal=True,
                                           writeToFile=False,
-                                          outputVariableType=_contact_force_output(case))
-            scene.contact_sensors.append((index, mbs.AddSensor(sensor), frame_sensor,
-                                          compiled))
+                                          outputVariableType=contact_force_output(case))
+            scene.contact_sensors.append(ContactSensor(index, mbs.AddSensor(sensor),
+                                                       frame_sensor, compiled))
     scene.keep_alive.extend(laws.values())
     if scene.tangent_planes:
         scene.step_hooks.append(_tangent_plane_refresh(prepared.mesh, case.surface,
                                                        scene.tangent_planes))
     if scene.lagged_contacts:  # after the tangent planes: it reads the contacts' frames
-        drops = {contact: ratios for contact, (_, ratios) in scene.compiled_contacts.items()}
+        drops = {contact: law.drops for contact, law in scene.compiled_contacts.items()}
         scene.step_hooks.append(lagged_drop_hook(scene.lagged_contacts, case.contact,
                                                  law_surface(case), drops))
     window = prepared.friction_window
@@ -397,24 +393,9 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
     # touching groups renew the Jacobian at every step attempt anyway (solver.dynamic_settings)
     if scene.bristle_contact is None and linear_solver(case.solver) == "EigenSparse":
         scene.step_hooks.append(fresh_jacobian_after_step_change())
-    sliding_step = min(case.solver.sliding_step_factor * case.solver.step_size,
-                       case.output.interval)
-    if case.surface.kind in LARGER_STEP_SURFACES and sliding_step > case.solver.step_size:
-        # above the friction law's Stribeck band with a margin, whatever the peak speed
-        speed = max(case.solver.sliding_speed_fraction * scene.motion.slide.peak_speed,
-                    STRIBECK_MARGIN * case.contact.dynamic_velocity)
-        # how long a lower cap may take to hold: the step in progress and up to
-        # solver.step_recovery_steps - 1 more stay large (step_cap); two steps of margin,
-        # for a step that took more than Exudyn's 7 Newton iterations where the step would
-        # be changed (it defers the change)
-        ahead = (case.solver.step_recovery_steps + 2) * sliding_step
-        clear = None
-        if case.surface.kind == "tooth-row":
-            clear = _tips_on_flat_tops(case.surface, tips, ahead,
-                                       scene.motion.slide.peak_speed)
-        fast = scene.motion.sliding_faster_throughout(speed, ahead, case.solver.step_size)
-        scene.step_hooks.append(_sliding_step_cap(fast, case.solver.step_size, sliding_step,
-                                                  clear))
+    cap = sliding_step_cap(case, scene.motion, tips)
+    if cap is not None:
+        scene.step_hooks.append(cap)
     if scene.bristle_contact is not None:  # after the step cap: it reads the step's cap
         scene.step_hooks.append(contact_refresh(scene.bristle_contact, case.solver.step_size))
     mbs.Assemble()
@@ -445,49 +426,6 @@ def _add_line_search(scene: Scene, setting: str) -> None:
         scene.mbs.SetPreNewtonResidualUserFunction(scene.line_search)
     else:
         scene.step_hooks.insert(0, after_step_cut(scene.line_search))
-
-
-def _sliding_step_cap(fast, step_size: float, sliding_step: float, clear=None):
-    """Step hook letting the step grow from ``step_size`` to ``sliding_step`` [s] while
-    ``fast(t)`` holds (the head slides fast enough from now until a lower cap could take
-    hold: HeadMotion.sliding_faster_throughout) and ``clear(mbs)`` holds if given
-    (docs/model.md, "Steps in the middle of a stroke"). Only on
-    :data:`LARGER_STEP_SURFACES`. Groups of bristles that touch each other take them too
-    (since 0.12.0): their broad phase looks as far ahead as the step's cap
-    (exubrush.contact.exudyn_between.contact_refresh)."""
-
-    def larger_allowed(mbs, t):
-        return fast(t) and (clear is None or clear(mbs))
-
-    return step_cap(step_size, sliding_step, larger_allowed)
-
-
-def _tips_on_flat_tops(surface, tips: list, ahead: float, speed: float):
-    """``clear(mbs)`` for :func:`_sliding_step_cap` on a tooth row: whether every tip
-    (node, sphere radius [mm]) lies over the flat part of a tooth top with room along the
-    row, before the rounded edges begin, for its radius and its travel over ``ahead`` [s]
-    at ``speed`` (the head's peak [mm/s]) or at its own speed along the row if faster (so
-    that no large step carries it onto an edge or into a gap;
-    exubrush.surfaces.flat_top_clearance)."""
-    # the along-row coordinate of exubrush.surfaces.to_surface_frame, in plain arithmetic:
-    # this runs for every tip and step
-    cosine, sine = np.cos(surface.yaw), np.sin(surface.yaw)
-    position = exu.OutputVariableType.Position
-    velocity = exu.OutputVariableType.Velocity
-
-    def clear(mbs):
-        for node, radius in tips:
-            x, y, z = mbs.GetNodeOutput(node, position)
-            room = flat_top_clearance(surface, cosine * (x - surface.x)
-                                      + sine * (y - surface.y), z) - radius
-            if room < ahead * speed:
-                return False
-            vx, vy, _ = mbs.GetNodeOutput(node, velocity)
-            if room < ahead * abs(cosine * vx + sine * vy):
-                return False
-        return True
-
-    return clear
 
 
 def _polyline(bristle: BristleGeometry, nodes, gamma: float | None) -> list:

@@ -17,10 +17,11 @@ from typing import Protocol
 import exudyn as exu
 import numpy as np
 
+from exubrush.contact.tip_force import force_on_tip
 from exubrush.newton import LineSearch
 from exubrush.prepared import PreparedCase
 from exubrush.sanity import beyond_bound_message
-from exubrush.scene import Scene, build_scene, force_on_tip
+from exubrush.scene import Scene, build_scene
 from exubrush.solution import INTERRUPTED, GroupSolution, SolverStatistics
 from exubrush.solution_files import read_coordinate_file
 from exubrush.solver import dynamic_settings, record_coordinates
@@ -120,13 +121,14 @@ def solve_group(prepared: PreparedCase, selection: tuple[int, ...],
         completed, message = False, status["reason"]
     if monitor is not None:
         monitor.advance(end_time - reported[0])
-    drive = [np.asarray(scene.mbs.GetSensorStoredData(s)) for s in scene.drive_sensors]
-    histories = [[np.asarray(scene.mbs.GetSensorStoredData(s)) for s in sensors]
-                 for sensors in scene.node_sensors]
-    contact_rows = [(index, np.asarray(scene.mbs.GetSensorStoredData(sensor)),
-                     None if frame is None else np.asarray(scene.mbs.GetSensorStoredData(frame)),
-                     compiled)
-                    for index, sensor, frame, compiled in scene.contact_sensors]
+    def stored(sensor):
+        return np.asarray(scene.mbs.GetSensorStoredData(sensor))
+
+    drive = [stored(s) for s in scene.drive_sensors]
+    histories = [[stored(s) for s in sensors] for sensors in scene.node_sensors]
+    # (force rows, frame rows or None) of each of scene.contact_sensors
+    contact_rows = [(stored(s.force), None if s.frame is None else stored(s.frame))
+                    for s in scene.contact_sensors]
     statistics = solver_statistics(scene.mbs, scene.line_search)
     touching = scene.bristle_contact
     counts = np.asarray(touching.counts if touching is not None else [], float)
@@ -136,13 +138,13 @@ def solve_group(prepared: PreparedCase, selection: tuple[int, ...],
     # (0.9 MB per default bristle and 2 periods, validation/benchmarks/README.md)
     scene.system_container.Reset()
     n = min(len(h) for h in [*drive, *(h for nodes in histories for h in nodes),
-                             *(rows for _, rows, _, _ in contact_rows)])
+                             *(rows for rows, _ in contact_rows)])
     nodes = np.array([[h[:n, 1:4] for h in bristle] for bristle in histories])
     tip_force = np.zeros((len(histories), n, 3))
-    for index, rows, frames, compiled in contact_rows:
-        tip_force[index] = force_on_tip(case, rows[:n, 1:4],
-                                        None if frames is None else frames[:n, 1:10],
-                                        compiled)
+    for sensor, (rows, frames) in zip(scene.contact_sensors, contact_rows, strict=True):
+        tip_force[sensor.bristle] = force_on_tip(case, rows[:n, 1:4],
+                                                 None if frames is None else frames[:n, 1:10],
+                                                 sensor.compiled)
     reaction = np.column_stack([d[:n, 1] for d in drive]) if n else np.zeros((0, 3))
     finite = np.all(np.isfinite(reaction), axis=1) & np.all(np.isfinite(nodes), axis=(0, 1, 3))
     sane = finite & (np.abs(np.nan_to_num(reaction[:, 2])) <= bound)

@@ -20,11 +20,9 @@ import math
 from dataclasses import dataclass, field, replace
 
 from exubrush.parameters.fields import Parameters, build, param
+from exubrush.parameters.surface_kinds import SURFACE_KINDS
 
 CONTACT_BACKENDS = ("paper-symbolic", "paper-python", "paper-compiled", "exudyn-builtin")
-# where contact.backend "paper-compiled" computes the law compiled (exubrush.contact.
-# surface_kernel): tips on Euler-parameter nodes (DFM's) over a curved analytic surface
-COMPILED_SURFACES = ("cylinder", "sphere", "tooth-row")
 # the shapes exubrush.models.sections implements (a test keeps the two lists equal; the
 # parameters do not import the models)
 SECTION_SHAPES = ("rectangle", "ellipse", "circle")
@@ -307,7 +305,6 @@ class ContactLaw(Parameters):
             )
 
 
-SURFACE_KINDS = ("plane", "cylinder", "sphere", "tooth-row", "mesh")
 # the units exubrush.mesh reads (a test keeps the two lists equal)
 MESH_UNITS = ("mm", "cm", "m", "um", "in")
 

@@ -1,4 +1,5 @@
-"""Larger steps in the middle of a stroke (solver.sliding_step_factor, exubrush.scene)."""
+"""Larger steps in the middle of a stroke (solver.sliding_step_factor,
+exubrush.step_policy)."""
 
 from types import SimpleNamespace
 
@@ -9,9 +10,10 @@ import pytest
 from exubrush.parameters.case import Surface
 from exubrush.parameters.io import load_case
 from exubrush.prepared import prepare
-from exubrush.scene import STRIBECK_MARGIN, _tips_on_flat_tops, build_scene
+from exubrush.scene import build_scene
 from exubrush.simulation import simulate
 from exubrush.solve import group_settings
+from exubrush.step_policy import STRIBECK_MARGIN, tips_on_flat_tops
 from exubrush.surfaces import orientation, to_surface_frame
 
 ONE_BRISTLE = ["head.rows=1", "head.columns=1", "motion.periods=0.25"]
@@ -96,7 +98,7 @@ def test_on_a_tooth_row_the_step_grows_only_with_every_tip_over_a_flat_top():
     assert np.allclose(to_surface_frame(row, head(2.0, 1.0, 0.3)), [2.0, 1.0, 0.3])
     # the flat part of a top ends 3 mm from the tooth's centre; a radius of 0.2 mm and
     # 0.3 mm of travel (0.1 s at 3 mm/s) leave 2.5 mm either side
-    clear = _tips_on_flat_tops(row, [(0, 0.2), (1, 0.2)], ahead=0.1, speed=3.0)
+    clear = tips_on_flat_tops(row, [(0, 0.2), (1, 0.2)], ahead=0.1, speed=3.0)
     centre = head(0.0, 5.0, 0.3)  # across the row does not matter
     assert clear(_Tips([centre, head(2.4, -3.0, 0.3)]))
     assert clear(_Tips([centre, head(-2.4, 0.0, 0.3)]))  # the other side

@@ -27,9 +27,9 @@ def floor_group(prepared: PreparedCase, selection: tuple[int, ...]) -> dict:
     scene = build_scene(prepared, selection)
     for contact in scene.contacts:
         scene.mbs.SetObjectParameter(contact, "activeConnector", False)
-    for compiled, _ in scene.compiled_contacts.values():  # contact.backend "paper-compiled"
-        scene.mbs.SetObjectParameter(compiled, "forceUserFunction", 0)
-        scene.mbs.SetObjectParameter(compiled, "jacobianUserFunction", 0)
+    for compiled in scene.compiled_contacts.values():  # contact.backend "paper-compiled"
+        scene.mbs.SetObjectParameter(compiled.item, "forceUserFunction", 0)
+        scene.mbs.SetObjectParameter(compiled.item, "jacobianUserFunction", 0)
     settings = group_settings(prepared, scene, selection)
 
     scene.mbs.SetPreStepUserFunction(scene.run_step_hooks)
