@@ -6,6 +6,7 @@ import csv
 import math
 import os
 import tempfile
+import tokenize
 import zipfile
 import zlib
 from collections.abc import Iterable, Mapping, Sequence
@@ -61,9 +62,10 @@ class DamagedFile(ValueError):
 # (ValueError), zipfile's (BadZipFile; NotImplementedError for an unknown compression,
 # RuntimeError for an encrypted member), zlib's, a member cut short (EOFError), a member
 # that is not there (KeyError), the file system's (OSError), and a header asking for an
-# array larger than memory (MemoryError).
+# array larger than memory (MemoryError); a header whose dict is cut open fails in NumPy's
+# tokenizer before its own check (tokenize.TokenError; found by the property test).
 _NPZ_FAULTS = (OSError, ValueError, EOFError, KeyError, zipfile.BadZipFile, zlib.error,
-               NotImplementedError, RuntimeError, MemoryError)
+               NotImplementedError, RuntimeError, MemoryError, tokenize.TokenError)
 
 
 def read_npz(path: str | Path, required: Mapping[str, int | None],
