@@ -11,8 +11,8 @@ The names below are imported on first use, so that ``import exubrush`` stays lig
 Exudyn, no matplotlib) for a script that only reads parameters or results.
 """
 
-from exubrush.exudyn_build import choose_exudyn_build
-from exubrush.provenance import package_version
+from exubrush.util.exudyn_build import choose_exudyn_build
+from exubrush.util.provenance import package_version
 
 __version__ = package_version()
 choose_exudyn_build()  # Exudyn's fast build in every process that imports exubrush first
@@ -21,11 +21,11 @@ _API = {
     "load_case": "exubrush.parameters.io",
     "Case": "exubrush.parameters.case",
     "ParameterError": "exubrush.parameters.fields",
-    "prepare": "exubrush.prepared",
-    "PreparedCase": "exubrush.prepared",
+    "prepare": "exubrush.run.prepared",
+    "PreparedCase": "exubrush.run.prepared",
     "simulate": "exubrush.simulation",
-    "Results": "exubrush.results",
-    "read_results": "exubrush.results",
+    "Results": "exubrush.output.results",
+    "read_results": "exubrush.output.results",
 }
 __all__ = ["__version__", *_API]
 

@@ -95,8 +95,8 @@ def run(case, model, segments, periods, out, overrides, overwrite, quiet, preset
                  "output.solution_file=true" if viewer else None]
     from exubrush.parameters.fields import ParameterError
     from exubrush.parameters.io import load_case
-    from exubrush.prepared import prepare
-    from exubrush.units import UnitError
+    from exubrush.run.prepared import prepare
+    from exubrush.util.units import UnitError
 
     try:
         prepared = prepare(load_case(case, [*preset_overrides(preset),
@@ -112,7 +112,7 @@ def run(case, model, segments, periods, out, overrides, overwrite, quiet, preset
                    f"{parameters.motion.interaction_distance:g} mm; they get no contact",
                    err=True)
     from exubrush.execution.signals import signals_redirected
-    from exubrush.rundir import RunDirectory, RunDirectoryError, default_directory
+    from exubrush.run.rundir import RunDirectory, RunDirectoryError, default_directory
     from exubrush.simulation import simulate
 
     directory = Path(out or default_directory(parameters))
@@ -165,7 +165,7 @@ def _load_plotting() -> None:
     import matplotlib.backends.backend_agg  # noqa: F401 - imported for its side effect
     from matplotlib import font_manager
 
-    import exubrush.plotting  # noqa: F401
+    import exubrush.output.plotting  # noqa: F401
 
     font_manager.findfont(font_manager.FontProperties())
 
@@ -217,7 +217,7 @@ def sweep(sweep_file, out, scheduler, workers, retry_failed, quiet, example):
     if sweep_file is None:
         _fail("give a sweep file (exubrush sweep --example prints one)")
     from exubrush.execution.signals import signals_redirected
-    from exubrush.rundir import RunDirectoryError
+    from exubrush.run.rundir import RunDirectoryError
     from exubrush.sweep.plan import SweepError, read_sweep
     from exubrush.sweep.runner import check_folder, default_folder, prepare_runs, run_sweep
 
@@ -268,7 +268,7 @@ def case(case, overrides):
     """Print CASE as a complete TOML case file, every parameter with its unit."""
     from exubrush.parameters.fields import ParameterError, to_toml
     from exubrush.parameters.io import load_case
-    from exubrush.units import UnitError
+    from exubrush.util.units import UnitError
 
     try:
         click.echo(to_toml(load_case(case, overrides)), nl=False)
@@ -298,8 +298,8 @@ def compare(results_dir, measured_csv, out, alignment, time_offset, flat_speed, 
     each with its unit in the header, e.g. 'normal_force [mN]' (see validation/data/README.md).
     Writes comparison.md, comparison.json and compare_*.png.
     """
-    from exubrush.compare_report import write_comparison
-    from exubrush.experiment import (
+    from exubrush.output.compare_report import write_comparison
+    from exubrush.output.experiment import (
         Alignment,
         ForceSeries,
         align,
@@ -307,8 +307,8 @@ def compare(results_dir, measured_csv, out, alignment, time_offset, flat_speed, 
         read_measured_csv,
         strokes,
     )
-    from exubrush.experiment import compare as compare_series
-    from exubrush.results import ResultsError, read_results
+    from exubrush.output.experiment import compare as compare_series
+    from exubrush.output.results import ResultsError, read_results
 
     try:
         results = read_results(results_dir)
@@ -370,8 +370,8 @@ def frames(results_dirs, times, out, gif_frames):
     """
     import numpy as np
 
-    from exubrush.frames import load_shapes, write_animation, write_frames
-    from exubrush.results import ResultsError
+    from exubrush.output.frames import load_shapes, write_animation, write_frames
+    from exubrush.output.results import ResultsError
 
     requested = _parse_times(times)
     try:
@@ -416,8 +416,8 @@ def view(results_dir, write_only):
     interval, the whole head as one Exudyn system) and, where a display is available,
     opens Exudyn's renderer with the SolutionViewer dialog on it.
     """
-    from exubrush.results import ResultsError
-    from exubrush.viewer import has_display, open_viewer, prepare, viewer_scene
+    from exubrush.output.results import ResultsError
+    from exubrush.output.viewer import has_display, open_viewer, prepare, viewer_scene
 
     try:
         results, path = prepare(results_dir)

@@ -16,14 +16,14 @@ from __future__ import annotations
 
 import time
 
-from exubrush.assemble import RunFacts, assemble_results
 from exubrush.execution import Executor, SolveTask
 from exubrush.execution.local import local_executor
 from exubrush.execution.progress import SimulatedTimeBar
+from exubrush.output.results import Results
 from exubrush.parameters.case import Case
-from exubrush.prepared import PreparedCase, prepare
-from exubrush.results import Results
-from exubrush.rundir import RunDirectory
+from exubrush.run.assemble import RunFacts, assemble_results
+from exubrush.run.prepared import PreparedCase, prepare
+from exubrush.run.rundir import RunDirectory
 
 
 def simulate(case: Case | PreparedCase, progress: bool = True, workers: int | None = None,
@@ -38,7 +38,7 @@ def simulate(case: Case | PreparedCase, progress: bool = True, workers: int | No
     Parameters
     ----------
     case : Case or PreparedCase
-        What to run; a Case is prepared first (exubrush.prepared.prepare).
+        What to run; a Case is prepared first (exubrush.run.prepared.prepare).
     progress : bool
         Show a progress bar of the simulated time on standard error.
     workers : int, optional

@@ -16,13 +16,13 @@ from exubrush.contact.exudyn_contact import (
     contact_user_function,
     surface_marker,
 )
-from exubrush.mesh import frame_with_normal
 from exubrush.models.assembly import rigid_marker
 from exubrush.models.dfm import add_dfm_bristle
 from exubrush.models.geometry import BristleGeometry
 from exubrush.models.prb import add_prb_bristle
 from exubrush.parameters.case import BristleContactLaw, ContactLaw, Material, Solver, Surface
-from exubrush.solver import dynamic_settings, static_settings
+from exubrush.run.solver import dynamic_settings, static_settings
+from exubrush.world.mesh import frame_with_normal
 
 
 def tip_loaded_cantilever(

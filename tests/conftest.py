@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from exubrush.experiment import ForceSeries
+from exubrush.output.experiment import ForceSeries
 
 OMEGA = math.pi / 6.0  # rad/s, the orthogonal case's slide: x = 15 mm sin(ω t)
 

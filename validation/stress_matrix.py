@@ -4,7 +4,7 @@ Each cell runs ``exubrush run`` as a separate process on a small head (stability
 is the point) with one parameter pushed away from the default, under a wall-time limit.
 A cell passes if it either
 
-- completed, with finite forces below the physical bound of exubrush.sanity, or
+- completed, with finite forces below the physical bound of exubrush.run.sanity, or
 - stopped with status "failed" and a message that names the time and the cause, keeping
   the results up to there (a force beyond the bound stops the run: it is not physics);
 

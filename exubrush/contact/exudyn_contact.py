@@ -9,7 +9,7 @@ a minus sign (a spring's restoring convention, checked in
 tests/integration/test_contact_connector.py). The law is
 :func:`exubrush.contact.laws.sphere_plane_force` on a plane and
 :func:`exubrush.contact.laws.sphere_surface_force` over the surface's features
-(exubrush.surfaces) on any other surface, recorded as an Exudyn symbolic (C++) user
+(exubrush.world.surfaces) on any other surface, recorded as an Exudyn symbolic (C++) user
 function by default (``contact.backend = "paper-symbolic"``), or called as plain Python
 (``"paper-python"``). With ``"paper-compiled"`` the connector is made as for the symbolic
 law and switched off, kept for its outputs (the tip's state in the surface frame), and
@@ -35,10 +35,10 @@ from exubrush.contact.laws import (
     sphere_plane_force,
     sphere_surface_force,
 )
-from exubrush.float_math import FLOAT_MATH
 from exubrush.models.assembly import rigid_marker
 from exubrush.parameters.case import ContactLaw, Surface
-from exubrush.surfaces import features, orientation
+from exubrush.util.float_math import FLOAT_MATH
+from exubrush.world.surfaces import features, orientation
 
 # half the side of the square of the plane z = 0 that the built-in contact's triangle
 # covers [mm]: far beyond any head and stroke
@@ -59,7 +59,7 @@ SYMBOLIC_MATH = SimpleNamespace(
     square=lambda x: x**2,
     IfThenElse=_symbolic_if,
 )
-"""The math back end (exubrush.float_math) that records Exudyn symbolic expressions."""
+"""The math back end (exubrush.util.float_math) that records Exudyn symbolic expressions."""
 
 CONNECTOR_TYPE = "ObjectConnectorRigidBodySpringDamper"
 # the connector's offset vector, which carries the lagged drop ratios (one per feature)

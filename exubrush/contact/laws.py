@@ -1,10 +1,10 @@
 """Contact force laws of a tip sphere on a rigid surface (pure, mm-N-s units).
 
-Each law is written once against a small "math back end" (exubrush.float_math) so that
+Each law is written once against a small "math back end" (exubrush.util.float_math) so that
 the same code runs on floats (``FLOAT_MATH``) and on Exudyn's symbolic expressions
 (``exudyn.symbolic``), which the Exudyn adapter records into a C++ user function.
 
-Sources: the paper's eqs. 14 and 15 (Cellupica et al. 2024, exubrush.references), after
+Sources: the paper's eqs. 14 and 15 (Cellupica et al. 2024, exubrush.util.references), after
 its refs. [35-37] (Hertz, extended by Flores) and [39-42] (velocity-based friction).
 
 Normal force, Hertz-type penalty with Flores-type damping (the paper's eq. 14)::
@@ -34,8 +34,8 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING
 
-from exubrush.float_math import FLOAT_MATH
-from exubrush.surfaces import Choice, features, taken
+from exubrush.util.float_math import FLOAT_MATH
+from exubrush.world.surfaces import Choice, features, taken
 
 if TYPE_CHECKING:  # the laws read the parameters' attributes only: no import at run time
     from exubrush.parameters.case import ContactLaw, Surface
@@ -183,7 +183,7 @@ def sphere_feature_force(
     law: ContactLaw, radius: float, normal, distance, velocity, omega, m=FLOAT_MATH,
     friction_scale=1.0, drop=None,
 ):
-    """Force and moment of one convex surface feature on a sphere (exubrush.surfaces).
+    """Force and moment of one convex surface feature on a sphere (exubrush.world.surfaces).
 
     The sphere (radius r [mm]) penetrates the feature by δ = r − d along the feature's
     outward unit normal n at the closest point, d the signed distance of its centre
@@ -222,7 +222,7 @@ def sphere_surface_force(
     friction_scale=1.0, drops=None,
 ):
     """The sum of :func:`sphere_feature_force` over ``surface_features``
-    (exubrush.surfaces.features): every feature the sphere penetrates acts on it. A
+    (exubrush.world.surfaces.features): every feature the sphere penetrates acts on it. A
     feature's load is only evaluated where the sphere reaches it (d < r), a Choice's only
     in the region the point is in (Exudyn's IfThenElse evaluates one branch). ``drops``:
     one drop ratio per feature (:func:`sphere_plane_force`'s ``drop``), or None."""

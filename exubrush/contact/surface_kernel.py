@@ -1,7 +1,7 @@
 """Compiled kernel of the tip-sphere contact with an analytic surface (numba; mm-N-s).
 
 The same law as exubrush.contact.laws.sphere_surface_force over the features of
-exubrush.surfaces (plane, cylinder, sphere, tooth row), for one sphere state at a time in
+exubrush.world.surfaces (plane, cylinder, sphere, tooth row), for one sphere state at a time in
 scalar code, and the generalized forces it puts on a tip node with Euler parameters,
 with their derivatives: so that an Exudyn ``ObjectGenericODE2`` (contact.backend
 "paper-compiled", exubrush.contact.exudyn_contact) computes the contact and its Jacobian
@@ -21,7 +21,7 @@ from numba import njit
 
 PLANE, CYLINDER, SPHERE, TOOTH_ROW = 0, 1, 2, 3
 _KINDS = {"plane": PLANE, "cylinder": CYLINDER, "sphere": SPHERE, "tooth-row": TOOTH_ROW}
-_TINY = 1e-300  # as exubrush.surfaces
+_TINY = 1e-300  # as exubrush.world.surfaces
 MAX_FEATURES = 3
 _JIT: dict[str, Any] = {"cache": True, "error_model": "numpy", "nogil": True}
 
@@ -94,7 +94,7 @@ def _add_feature_load(law, radius, nx, ny, nz, distance, v, w, scale, drop, out)
 @njit(**_JIT)
 def _round(a, b, c, radius, ball):
     """Normal (3) and distance of the outside of a ball (or a cylinder along y, ball
-    False) of ``radius`` centred at the origin of (a, b, c) (exubrush.surfaces)."""
+    False) of ``radius`` centred at the origin of (a, b, c) (exubrush.world.surfaces)."""
     square = a * a + b * b + c * c if ball else a * a + c * c
     length = math.sqrt(square)
     inverse = 1.0 / max(length, _TINY)
@@ -104,7 +104,7 @@ def _round(a, b, c, radius, ball):
 @njit(**_JIT)
 def _tooth(params, u, z):
     """The feature of one tooth centred at u = 0 that the point (u, z) is closest to:
-    normal (3) and distance (exubrush.surfaces._tooth_feature)."""
+    normal (3) and distance (exubrush.world.surfaces._tooth_feature)."""
     width, rho = params[0], params[3]
     half = 0.5 * width
     b = z + rho
@@ -125,7 +125,7 @@ def _tooth(params, u, z):
 @njit(**_JIT)
 def surface_load(kind, params, law, radius, centre, v, w, scale, drops, out):
     """Force on the sphere [N] and moment about its centre [N·mm] (``out``, 6), surface
-    frame, summed over the surface's features in the order of exubrush.surfaces.features;
+    frame, summed over the surface's features in the order of exubrush.world.surfaces.features;
     ``drops`` one lagged drop ratio per feature (negative: the implicit law), ``scale``
     the friction's factor (the friction window)."""
     for i in range(6):

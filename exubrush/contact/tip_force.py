@@ -10,7 +10,7 @@ from __future__ import annotations
 import exudyn as exu
 import numpy as np
 
-from exubrush.surfaces import orientation
+from exubrush.world.surfaces import orientation
 
 BUILTIN_FORCE_SIGN = 1.0
 

@@ -1,8 +1,8 @@
 """Running solve tasks: the executor interface and the local executors.
 
 An executor takes a list of :class:`SolveTask` (bristle groups, of one run or of the many runs
-of a sweep), runs :func:`exubrush.solve.solve_group` for each wherever it likes, and hands every
-:class:`~exubrush.solve.GroupSolution` back to the caller, in the caller's process, as it
+of a sweep), runs :func:`exubrush.run.solve.solve_group` for each wherever it likes, and hands every
+:class:`~exubrush.run.solve.GroupSolution` back to the caller, in the caller's process, as it
 finishes. It reports progress in simulated seconds and stops cleanly on Ctrl-C or SIGTERM:
 solves in progress return what they have, tasks not started return nothing. The physics
 never sees which executor runs it; a distributed engine plugs in as one more
@@ -15,8 +15,8 @@ from abc import ABC, abstractmethod
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
-from exubrush.prepared import PreparedCase
-from exubrush.solution import GroupSolution
+from exubrush.run.prepared import PreparedCase
+from exubrush.run.solution import GroupSolution
 
 
 @dataclass(frozen=True, eq=False)

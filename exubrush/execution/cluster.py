@@ -1,13 +1,13 @@
 """Solve tasks on a Dask cluster: a local one started here, or one at a scheduler address.
 
 Each task is the same bristle-group solve the process pool runs
-(:func:`exubrush.solve.solve_group`); its :class:`~exubrush.solution.GroupSolution` comes back
-to this process, which writes every file, so workers need exubrush installed and nothing
-else (no shared disk). Tasks of every run of a sweep go into one queue here; the scheduler
-holds only :data:`IN_FLIGHT` tasks per worker thread at a time, each with its prepared case
-(tens of kB), so whichever worker is free takes the next one. (A prepared case shared as
-one Dask dependency made the scheduler put every task of a run on the worker holding it:
-one core of two did the work.)
+(:func:`exubrush.run.solve.solve_group`); its :class:`~exubrush.run.solution.GroupSolution`
+comes back to this process, which writes every file, so workers need exubrush installed and
+nothing else (no shared disk). Tasks of every run of a sweep go into one queue here; the
+scheduler holds only :data:`IN_FLIGHT` tasks per worker thread at a time, each with its
+prepared case (tens of kB), so whichever worker is free takes the next one. (A prepared
+case shared as one Dask dependency made the scheduler put every task of a run on the worker
+holding it: one core of two did the work.)
 
 Faults and stops:
 
@@ -36,7 +36,7 @@ from collections.abc import Iterator
 
 from exubrush.execution import Executor
 from exubrush.execution.signals import StopRequest, signals_redirected
-from exubrush.solution import GroupSolution
+from exubrush.run.solution import GroupSolution
 
 POLL = 0.2  # s between two looks at the futures and the progress queue
 CHECK_INTERVAL = 0.5  # s of wall time between a worker's looks at the stop event
@@ -205,7 +205,7 @@ _MONITOR: dict = {}  # this worker's monitor: {run name: _WorkerMonitor}, the la
 
 def _solve_on_worker(prepared, selection, name: str, task: int) -> GroupSolution | None:
     """Solve one group, or return None at once if the run was stopped before it began."""
-    from exubrush.solve import solve_group
+    from exubrush.run.solve import solve_group
 
     if name not in _MONITOR:
         _MONITOR.clear()

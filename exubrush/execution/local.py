@@ -19,7 +19,7 @@ from concurrent.futures.process import BrokenProcessPool
 
 from exubrush.execution import Executor
 from exubrush.execution.signals import StopRequest, signals_redirected
-from exubrush.solve import solve_group
+from exubrush.run.solve import solve_group
 
 POLL = 0.2  # s between two looks at the pool and the progress queue
 

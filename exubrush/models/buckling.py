@@ -29,14 +29,14 @@ shortens the link, ``F`` > 0 pushes the tip towards the pivot):
   subtracted so that the unloaded link keeps its length.
 
 Below P_b the link is as stiff as the bristle is in compression; in tension F = k_a s. The
-law is written against a math back end (exubrush.float_math.FLOAT_MATH or
+law is written against a math back end (exubrush.util.float_math.FLOAT_MATH or
 ``exudyn.symbolic``) so that the same code runs on floats and in Exudyn's C++ expressions.
 Units: mm, N.
 """
 
 from __future__ import annotations
 
-from exubrush.float_math import FLOAT_MATH
+from exubrush.util.float_math import FLOAT_MATH
 
 CLAMPED_PINNED_BETA = 4.493409457909064  # smallest positive root of tan β = β
 SMOOTHING = 0.05  # ε / P_b of the smooth minimum

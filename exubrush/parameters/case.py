@@ -305,13 +305,13 @@ class ContactLaw(Parameters):
             )
 
 
-# the units exubrush.mesh reads (a test keeps the two lists equal)
+# the units exubrush.world.mesh reads (a test keeps the two lists equal)
 MESH_UNITS = ("mm", "cm", "m", "um", "in")
 
 
 @dataclass(frozen=True)
 class Surface(Parameters):
-    """The rigid surface the tips brush (exubrush.surfaces).
+    """The rigid surface the tips brush (exubrush.world.surfaces).
 
     Each kind is defined in its own frame, whose origin is the surface's highest point (top)
     and whose z is the head frame's Z: ``plane`` is z = 0; ``cylinder`` has its axis along
@@ -320,7 +320,7 @@ class Surface(Parameters):
     by interdental gaps ``gap_width`` wide and ``gap_depth`` deep, the tooth's top edges
     rounded with ``edge_radius``, the profile extruded along y; ``mesh`` is the triangle
     mesh of ``mesh_file`` (STL or OBJ, in ``mesh_unit``), its highest vertex moved to z = 0
-    (exubrush.mesh). ``x``, ``y`` and ``yaw``
+    (exubrush.world.mesh). ``x``, ``y`` and ``yaw``
     place that frame in the head frame (the head's position at the slide's centre); the
     top stays at Z = 0, so ``motion.interaction_distance`` is measured to it.
     """
@@ -418,7 +418,7 @@ class Model(Parameters):
 
 @dataclass(frozen=True)
 class Motion(Parameters):
-    """Approach, hold and slide of the head (see exubrush.motion)."""
+    """Approach, hold and slide of the head (see exubrush.world.motion)."""
 
     direction: str = param(
         "orthogonal", "slide axis: across the long axis (orthogonal) or along it (parallel)",
@@ -594,7 +594,7 @@ class Output(Parameters):
 @dataclass(frozen=True)
 class Limits(Parameters):
     """Bounds on the work a run may take on, checked before anything is built
-    (exubrush.budget). Generous for real studies; raise them to run bigger ones. They do
+    (exubrush.run.budget). Generous for real studies; raise them to run bigger ones. They do
     not change results, so a run that only raises a limit resumes its checkpoint."""
 
     bristles: int = param(10_000, "most bristles in a head", above=0)

@@ -18,7 +18,7 @@ from typing import Any
 
 import tomlkit
 
-from exubrush.units import UnitError, convert, format_quantity, to_internal
+from exubrush.util.units import UnitError, convert, format_quantity, to_internal
 
 
 class ParameterError(ValueError):

@@ -1,7 +1,7 @@
 """Load a case by name or from a TOML file, with ``KEY=VALUE`` overrides.
 
 Only the parameters are read and checked here; what needs the physics (the bristles'
-reach, the slide CSV's content) is checked by :func:`exubrush.prepared.prepare`.
+reach, the slide CSV's content) is checked by :func:`exubrush.run.prepared.prepare`.
 """
 
 from __future__ import annotations

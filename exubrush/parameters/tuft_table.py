@@ -21,7 +21,7 @@ from pathlib import Path
 
 from exubrush.parameters.case import Tuft
 from exubrush.parameters.fields import ParameterError, build
-from exubrush.tables import read_rows, split_header
+from exubrush.util.tables import read_rows, split_header
 
 REQUIRED = ("x", "y")
 COUNT_UNITS = ("", "1", "-")

@@ -14,7 +14,7 @@ import exudyn as exu
 import exudyn.itemInterface as eii
 import numpy as np
 
-from exubrush.solver import static_settings
+from exubrush.run.solver import static_settings
 
 
 def tip_position(length: float, bending: float, axial: float, shear: float,

@@ -29,7 +29,7 @@ import numpy as np
 from exubrush.parameters.case import BUILT_IN_CASES, Case
 from exubrush.parameters.fields import ParameterError, describe_key, to_plain
 from exubrush.parameters.io import load_case, read_toml
-from exubrush.units import UnitError, registry, to_internal
+from exubrush.util.units import UnitError, registry, to_internal
 
 SECTIONS = {
     "sweep": ("name", "base", "set", "seeds", "max_runs"),

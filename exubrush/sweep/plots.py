@@ -6,9 +6,9 @@ import math
 import re
 from pathlib import Path
 
-from exubrush.files import atomic_file
-from exubrush.plotting import figure
+from exubrush.output.plotting import figure
 from exubrush.sweep.summary import METRICS
+from exubrush.util.files import atomic_file
 
 COLUMNS = 4  # metric panels per row
 MOST_SERIES = 8  # more combinations of the other parameters than this: points, no lines

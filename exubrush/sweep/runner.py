@@ -7,7 +7,7 @@ one summary-PARAMETER.png per swept parameter).
 
 Resuming: the same sweep in the same folder skips the runs whose run.json says completed,
 and inside unfinished runs the bristle groups already in their checkpoint (the run
-directory's own resume, exubrush.rundir). Failed runs are kept as they are unless asked
+directory's own resume, exubrush.run.rundir). Failed runs are kept as they are unless asked
 to retry them. A folder that holds another sweep, or files exubrush did not write, is
 refused before anything is written.
 
@@ -26,15 +26,14 @@ from pathlib import Path
 
 import numpy as np
 
-from exubrush.assemble import RunFacts, assemble_results
 from exubrush.execution import Executor, SolveTask
 from exubrush.execution.progress import SimulatedTimeBar
-from exubrush.files import atomic_file, write_csv
+from exubrush.output.results import REMAKE, ResultsError, read_results
 from exubrush.parameters.case import Case
 from exubrush.parameters.fields import ParameterError, describe_key
-from exubrush.prepared import PreparedCase, prepare
-from exubrush.results import REMAKE, ResultsError, read_results
-from exubrush.rundir import (
+from exubrush.run.assemble import RunFacts, assemble_results
+from exubrush.run.prepared import PreparedCase, prepare
+from exubrush.run.rundir import (
     RunDirectory,
     recorded_status,
     run_record,
@@ -44,7 +43,8 @@ from exubrush.rundir import (
 from exubrush.sweep.plan import SweepError, SweepPlan, SweepRun
 from exubrush.sweep.plots import plot_summary
 from exubrush.sweep.summary import METRICS, run_metrics, sensitivities, write_parquet
-from exubrush.units import UnitError, convert
+from exubrush.util.files import atomic_file, write_csv
+from exubrush.util.units import UnitError, convert
 
 SWEEP_FILE = "sweep.json"
 SUMMARY_FILES = ("summary.csv", "summary.parquet", "sensitivity.csv")

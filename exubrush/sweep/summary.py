@@ -5,10 +5,10 @@ Metrics of one run (from its forces and shapes; empty where the run has no such 
 - flat-zone means per slide direction ("forward" = +slide axis, "backward"): the normal
   force F_n, the tangential force |F_t| and μ_eff = |F_t| / F_n over the flat zones
   (slide speed >= 80 % of the stroke's peak) of every *whole* stroke, i.e. from one
-  reversal to the next (exubrush.experiment.strokes: the first movement after the
+  reversal to the next (exubrush.output.experiment.strokes: the first movement after the
   approach and a stroke cut off by the end of the run are left out);
 - the reversal peak: the largest F_n where the slide speed is below the flat zone's
-  around a reversal (exubrush.experiment.reversal_zones);
+  around a reversal (exubrush.output.experiment.reversal_zones);
 - the largest tip deflection: the largest distance a tip moved relative to its root,
   against the first stored shape (bristles straight before the approach).
 
@@ -26,8 +26,8 @@ from pathlib import Path
 
 import numpy as np
 
-from exubrush.experiment import reversal_zones, strokes
-from exubrush.files import atomic_file
+from exubrush.output.experiment import reversal_zones, strokes
+from exubrush.util.files import atomic_file
 
 FLAT_SPEED = 0.8  # flat zone: slide speed >= this fraction of the stroke's peak
 DIRECTIONS = ((1, "forward"), (-1, "backward"))
@@ -45,7 +45,7 @@ NOT_SWEPT_FOR_SENSITIVITY = ("head.seed",)
 
 
 def run_metrics(results) -> dict[str, float]:
-    """The metrics of one run's :class:`~exubrush.results.Results` (NaN where undefined)."""
+    """The metrics of one run's :class:`~exubrush.output.results.Results` (NaN where undefined)."""
     metrics = dict.fromkeys((name for name, _ in METRICS), math.nan)
     time = results.time
     if time.size >= 3:
@@ -76,7 +76,7 @@ def run_metrics(results) -> dict[str, float]:
 
 
 def _cleaning_metrics(results) -> dict[str, float]:
-    """Means over the whole strokes of the run's cleaning summary (exubrush.cleaning):
+    """Means over the whole strokes of the run's cleaning summary (exubrush.output.cleaning):
     wiped area, force-share spread and, on a tooth row, the deepest tip in a gap."""
     summary = results.cleaning()
     whole = [s for s in summary["strokes"] if s["whole"]] if summary else []

@@ -9,8 +9,8 @@ import pytest
 from exubrush.models.geometry import BristleGeometry
 from exubrush.models.sections import section_properties
 from exubrush.parameters.case import BUILT_IN_MATERIALS, BristleContactLaw
-from exubrush.references import BRISTLE_CONTACT, FLORES, FRICTION, PAPER
 from exubrush.statics import pushed_pair
+from exubrush.util.references import BRISTLE_CONTACT, FLORES, FRICTION, PAPER
 
 D, L, GAP = 0.2, 10.0, 0.01  # mm: nylon filaments 10 mm long, 10 µm apart
 NYLON = BUILT_IN_MATERIALS["nylon"]
@@ -104,9 +104,9 @@ def test_touching_filaments_take_larger_steps_mid_stroke_and_miss_no_contact(tmp
     import exudyn as exu
 
     from exubrush.parameters.io import load_case
-    from exubrush.prepared import prepare
-    from exubrush.scene import build_scene
-    from exubrush.solve import group_settings
+    from exubrush.run.prepared import prepare
+    from exubrush.run.scene import build_scene
+    from exubrush.run.solve import group_settings
 
     case_file = tmp_path / "tuft3.toml"
     case_file.write_text('name = "tuft3"\n[head]\nlayout = "tufts"\n[[head.tufts]]\n'

@@ -6,7 +6,7 @@ import tomllib
 
 import pytest
 
-from exubrush.references import FLORES, FRICTION, HOWELL, PAPER, TIMOSHENKO_GERE
+from exubrush.util.references import FLORES, FRICTION, HOWELL, PAPER, TIMOSHENKO_GERE
 
 REQUIRED_COLUMNS = ["time [s]", "slider_position [mm]", "travelled_distance [mm]",
                     "normal_force [N]", "tangential_force [N]", "friction_coefficient [-]"]

@@ -5,7 +5,7 @@ import json
 
 import numpy as np
 
-from exubrush.results import Results
+from exubrush.output.results import Results
 
 
 def _save_run(directory, series):

@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 from exubrush.parameters.io import load_case
-from exubrush.prepared import prepare
-from exubrush.scene import build_scene
+from exubrush.run.prepared import prepare
+from exubrush.run.scene import build_scene
 from exubrush.simulation import simulate
 
 ONE_BRISTLE = ["head.rows=1", "head.columns=1", "motion.periods=0.1"]

@@ -23,7 +23,7 @@ from exubrush.contact.laws import (
     sphere_surface_force,
 )
 from exubrush.parameters.case import ContactLaw, Surface
-from exubrush.surfaces import features, orientation, to_surface_frame
+from exubrush.world.surfaces import features, orientation, to_surface_frame
 
 LAW = ContactLaw()
 RADIUS = 0.4

@@ -36,8 +36,8 @@ def solved(tmp_path_factory):
     """``saved``: the run's result directory; ``resumable``: its checkpoint alone (as a run
     stopped after every group finished leaves it)."""
     from exubrush.parameters.io import load_case
-    from exubrush.prepared import prepare
-    from exubrush.rundir import RunDirectory
+    from exubrush.run.prepared import prepare
+    from exubrush.run.rundir import RunDirectory
     from exubrush.simulation import simulate
 
     root = tmp_path_factory.mktemp("damaged")
@@ -207,9 +207,9 @@ def _damaged(data: bytes, damage) -> bytes:
        damage=damages)
 def test_any_damaged_result_file_is_read_or_refused_in_one_line(solved, tmp_path, name,
                                                                 damage):
-    from exubrush.frames import load_shapes
-    from exubrush.results import ResultsError, read_results
-    from exubrush.viewer import prepare
+    from exubrush.output.frames import load_shapes
+    from exubrush.output.results import ResultsError, read_results
+    from exubrush.output.viewer import prepare
 
     run = tmp_path / "run"
     shutil.rmtree(run, ignore_errors=True)
@@ -226,7 +226,7 @@ def test_any_damaged_result_file_is_read_or_refused_in_one_line(solved, tmp_path
 @pytest.fixture(scope="module")
 def prepared_case():
     from exubrush.parameters.io import load_case
-    from exubrush.prepared import prepare
+    from exubrush.run.prepared import prepare
 
     return prepare(load_case("orthogonal", OVERRIDES))
 
@@ -236,7 +236,7 @@ def prepared_case():
 @given(name=st.sampled_from(["group-00000.npz", "group-00001.npz"]), damage=damages)
 def test_any_damaged_checkpoint_group_is_read_or_refused_in_one_line(
         solved, prepared_case, tmp_path, name, damage):
-    from exubrush.rundir import RunDirectory, RunDirectoryError
+    from exubrush.run.rundir import RunDirectory, RunDirectoryError
 
     run = tmp_path / "resumable"
     shutil.rmtree(run, ignore_errors=True)

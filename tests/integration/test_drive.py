@@ -11,8 +11,8 @@ viewer runs are byte-identical (forces, shapes, solver statistics; CHANGELOG 0.4
 import numpy as np
 
 from exubrush.parameters.io import load_case
-from exubrush.prepared import prepare
-from exubrush.solve import solve_group
+from exubrush.run.prepared import prepare
+from exubrush.run.solve import solve_group
 
 # an irregular measured-like slide: uneven samples, both directions, a rest; it starts at
 # rest (two equal samples: PCHIP's slope is 0 there), as a slide with a velocity jump at its

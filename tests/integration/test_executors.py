@@ -10,7 +10,7 @@ import pytest
 from exubrush.execution import SolveTask
 from exubrush.execution.local import ProcessExecutor, SerialExecutor
 from exubrush.parameters.io import load_case
-from exubrush.prepared import prepare
+from exubrush.run.prepared import prepare
 
 
 @pytest.fixture(scope="module")

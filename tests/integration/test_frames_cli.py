@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from exubrush.frames import load_shapes
+from exubrush.output.frames import load_shapes
 
 
 @pytest.mark.slow

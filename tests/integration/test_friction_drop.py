@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 
 from exubrush.parameters.io import load_case
-from exubrush.prepared import prepare
-from exubrush.scene import build_scene, lags_friction_drop
+from exubrush.run.prepared import prepare
+from exubrush.run.scene import build_scene, lags_friction_drop
 from exubrush.simulation import simulate
 
 # one bristle, approach and half a period of parallel brushing: a stroke, its reversal and

@@ -16,7 +16,7 @@ import time
 import numpy as np
 import pytest
 
-from exubrush.results import Results
+from exubrush.output.results import Results
 
 TINY = ["--quiet", "--segments", "2", "--periods", "0.02", "--set", "head.rows=1",
         "--set", "head.columns=1"]

@@ -1,4 +1,4 @@
-"""Newton's line search in Exudyn (exubrush.newton.LineSearch): it changes Newton's path,
+"""Newton's line search in Exudyn (exubrush.run.newton.LineSearch): it changes Newton's path,
 not the solution a step converges to, and shortens updates that overshoot."""
 
 import exudyn as exu
@@ -6,13 +6,13 @@ import exudyn.itemInterface as eii
 import numpy as np
 import pytest
 
-from exubrush.newton import LineSearch
 from exubrush.parameters.fields import ParameterError
 from exubrush.parameters.io import load_case
-from exubrush.prepared import prepare
-from exubrush.scene import build_scene
+from exubrush.run.newton import LineSearch
+from exubrush.run.prepared import prepare
+from exubrush.run.scene import build_scene
+from exubrush.run.solver import quiet
 from exubrush.simulation import simulate
-from exubrush.solver import quiet
 
 
 def _arctan_spring(search, start, force, step, end, tolerance=1e-8):

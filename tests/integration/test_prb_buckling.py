@@ -5,13 +5,13 @@ the DFM bristle does (the paper's rigid link stays pushed on the parallel case).
 import numpy as np
 import pytest
 
-from exubrush.experiment import ForceSeries, stroke_flat_means
 from exubrush.models.buckling import CLAMPED_PINNED_BETA
 from exubrush.models.prb import axial_spring_constants
+from exubrush.output.experiment import ForceSeries, stroke_flat_means
 from exubrush.parameters.io import load_case
-from exubrush.prepared import prepare
 from exubrush.reference.buckled_column import clamped_pinned_load_index
 from exubrush.reference.sliding import sliding_normal_force
+from exubrush.run.prepared import prepare
 from exubrush.simulation import simulate
 from exubrush.statics import pinned_prb_push
 

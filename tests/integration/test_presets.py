@@ -11,7 +11,7 @@ rtol 1e-8, as the benchmark harness uses on the full head.
 
 import pytest
 
-from exubrush.experiment import Alignment, ForceSeries, align, compare, strokes
+from exubrush.output.experiment import Alignment, ForceSeries, align, compare, strokes
 from exubrush.parameters.io import load_case
 from exubrush.presets import PRESETS, preset_overrides
 from exubrush.simulation import simulate

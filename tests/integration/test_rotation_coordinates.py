@@ -5,8 +5,8 @@ import numpy as np
 import pytest
 
 from exubrush.parameters.io import load_case
-from exubrush.prepared import prepare
-from exubrush.scene import build_scene
+from exubrush.run.prepared import prepare
+from exubrush.run.scene import build_scene
 from exubrush.simulation import simulate
 
 pytestmark = pytest.mark.slow  # two models, two node types, each a short run

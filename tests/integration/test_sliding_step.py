@@ -1,5 +1,5 @@
 """Larger steps in the middle of a stroke (solver.sliding_step_factor,
-exubrush.step_policy)."""
+exubrush.run.step_policy)."""
 
 from types import SimpleNamespace
 
@@ -9,12 +9,12 @@ import pytest
 
 from exubrush.parameters.case import Surface
 from exubrush.parameters.io import load_case
-from exubrush.prepared import prepare
-from exubrush.scene import build_scene
+from exubrush.run.prepared import prepare
+from exubrush.run.scene import build_scene
+from exubrush.run.solve import group_settings
+from exubrush.run.step_policy import STRIBECK_MARGIN, tips_on_flat_tops
 from exubrush.simulation import simulate
-from exubrush.solve import group_settings
-from exubrush.step_policy import STRIBECK_MARGIN, tips_on_flat_tops
-from exubrush.surfaces import orientation, to_surface_frame
+from exubrush.world.surfaces import orientation, to_surface_frame
 
 ONE_BRISTLE = ["head.rows=1", "head.columns=1", "motion.periods=0.25"]
 

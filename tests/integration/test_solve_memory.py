@@ -8,8 +8,8 @@ from pathlib import Path
 import pytest
 
 from exubrush.parameters.io import load_case
-from exubrush.prepared import prepare
-from exubrush.solve import solve_group
+from exubrush.run.prepared import prepare
+from exubrush.run.solve import solve_group
 
 
 def _resident_mb() -> float:

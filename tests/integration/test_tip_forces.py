@@ -6,8 +6,8 @@ import json
 import numpy as np
 import pytest
 
+from exubrush.output.results import read_results
 from exubrush.parameters.io import load_case
-from exubrush.results import read_results
 from exubrush.simulation import simulate
 
 SMALL = ["head.rows=1", "head.columns=2", "motion.periods=0.25"]
@@ -67,8 +67,8 @@ def test_tips_file_says_which_part_each_tip_touches(tmp_path):
     ["surface.kind='cylinder'"], ["surface.kind='sphere'"],
     ["surface.kind='tooth-row'", "surface.yaw='30 deg'"]])
 def test_every_surface_has_graphics_for_the_viewer(surface):
-    from exubrush.prepared import prepare
-    from exubrush.scene import build_scene
+    from exubrush.run.prepared import prepare
+    from exubrush.run.scene import build_scene
 
     prepared = prepare(load_case("orthogonal", [*SMALL, *surface]))
     scene = build_scene(prepared, (0,), drawn=True)
@@ -79,8 +79,8 @@ def test_every_surface_has_graphics_for_the_viewer(surface):
 def test_a_mesh_surface_has_graphics_for_the_viewer(tmp_path):
     import trimesh
 
-    from exubrush.prepared import prepare
-    from exubrush.scene import build_scene
+    from exubrush.run.prepared import prepare
+    from exubrush.run.scene import build_scene
 
     trimesh.creation.icosphere(subdivisions=2, radius=4.0).export(tmp_path / "crown.stl")
     prepared = prepare(load_case("orthogonal", [

@@ -10,9 +10,9 @@ import numpy as np
 import pytest
 from exudyn.utilities import LoadSolutionFile, SetSolutionState
 
-from exubrush.results import read_results
-from exubrush.solution_files import SOLUTION_FILE, head_coordinates
-from exubrush.viewer import viewer_scene
+from exubrush.output.results import read_results
+from exubrush.output.viewer import viewer_scene
+from exubrush.run.solution_files import SOLUTION_FILE, head_coordinates
 
 
 @pytest.mark.slow
@@ -75,7 +75,7 @@ def test_groups_that_interleave_join_in_the_head_order():
 
 @pytest.mark.parametrize("rows", [0, 1, 3])
 def test_a_solution_file_of_any_length_reads_back(tmp_path, rows):
-    from exubrush.solution_files import read_coordinate_file, write_solution_file
+    from exubrush.run.solution_files import read_coordinate_file, write_solution_file
 
     written = np.arange(8.0 * rows).reshape(rows, 8)
     write_solution_file(tmp_path / "solution.txt", written, "test")

@@ -16,7 +16,7 @@ from hypothesis import strategies as st
 from exubrush.parameters.case import Case
 from exubrush.parameters.fields import ParameterError, dotted_keys, to_plain
 from exubrush.parameters.io import load_case
-from exubrush.prepared import prepare
+from exubrush.run.prepared import prepare
 
 KEYS = dotted_keys(Case)
 UNITS = ["mm", "m", "um", "MPa", "GPa", "s", "ms", "kg/m^3", "N", "N/mm^1.3", "N*s/mm^3",

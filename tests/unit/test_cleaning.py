@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from exubrush.cleaning import (
+from exubrush.output.cleaning import (
     cleaning_summary,
     contact_geometry,
     gap_depths,

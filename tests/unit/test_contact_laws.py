@@ -20,7 +20,7 @@ from exubrush.contact.laws import (
     sphere_surface_force,
 )
 from exubrush.parameters.case import ContactLaw, Surface
-from exubrush.surfaces import Choice, Feature, features, resolve
+from exubrush.world.surfaces import Choice, Feature, features, resolve
 
 LAW = ContactLaw()  # paper table 2
 
@@ -50,7 +50,7 @@ def test_no_force_without_penetration_and_no_pull():
 def test_unit_conversion_of_the_paper_coefficients():
     # k = 100 N/mm^1.3 is 100·1000^1.3 N/m^1.3 and c = 0.2 N·s/mm³ is 0.2e9 N·s/m³: the same
     # force comes out in SI for the same physical state
-    from exubrush.units import to_internal
+    from exubrush.util.units import to_internal
 
     k_si = to_internal("100 N/mm^1.3", "N/m^1.3")
     c_si = to_internal("0.2 N*s/mm^3", "N*s/m^3")
@@ -208,7 +208,7 @@ def test_a_diverged_state_gives_loads_not_an_exception():
     # must return numbers (Exudyn then cuts the step), never raise (x**2 of a float raises
     # OverflowError where x * x gives inf)
     from exubrush.parameters.case import Surface
-    from exubrush.surfaces import features
+    from exubrush.world.surfaces import features
 
     load = sphere_feature_force(LAW, 0.4, (0.6, 0.0, 0.8), 0.39, [1e200, 0.0, 0.0],
                                 [0.0, 0.0, 0.0])

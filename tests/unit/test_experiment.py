@@ -1,11 +1,11 @@
-"""Measured-data reading, alignment and flat-zone/reversal metrics (exubrush.experiment)."""
+"""Measured-data reading, alignment and flat-zone/reversal metrics (exubrush.output.experiment)."""
 
 import math
 
 import numpy as np
 import pytest
 
-from exubrush.experiment import (
+from exubrush.output.experiment import (
     Alignment,
     ForceSeries,
     align,
@@ -121,7 +121,7 @@ def test_no_overlap_is_refused(sine_run):
 
 
 def test_reversal_zones_of_a_sine_are_centred_on_the_reversals(sine_run):
-    from exubrush.experiment import reversal_zones
+    from exubrush.output.experiment import reversal_zones
 
     run = sine_run(dt=0.001)
     velocity = np.gradient(run.slider_position, run.time)

@@ -8,10 +8,10 @@ import sys
 
 import pytest
 
-from exubrush.exudyn_build import CHECKS_VARIABLE, wants_checked_build
+from exubrush.util.exudyn_build import CHECKS_VARIABLE, wants_checked_build
 
 REPORT = ("import sys\n{before}\nimport exubrush, exudyn\n"
-          "from exubrush.exudyn_build import build_in_use\n"
+          "from exubrush.util.exudyn_build import build_in_use\n"
           "print(exudyn._compiledModuleName, build_in_use())")
 
 

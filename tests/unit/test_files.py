@@ -6,7 +6,7 @@ import zipfile
 import numpy as np
 import pytest
 
-from exubrush.files import DamagedFile, read_npz
+from exubrush.util.files import DamagedFile, read_npz
 
 
 def archive_with_member(path, member: bytes) -> None:

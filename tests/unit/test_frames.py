@@ -3,10 +3,10 @@
 import numpy as np
 from PIL import Image
 
-from exubrush.frames import load_shapes, tube_outline, write_animation, write_frames
+from exubrush.output.frames import load_shapes, tube_outline, write_animation, write_frames
+from exubrush.output.results import Results
 from exubrush.parameters.fields import to_plain
 from exubrush.parameters.io import load_case
-from exubrush.results import Results
 
 
 def _saved_run(directory, model):

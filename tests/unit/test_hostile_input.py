@@ -11,10 +11,10 @@ import os
 import numpy as np
 import pytest
 
-from exubrush.motion import TabulatedSlide
 from exubrush.parameters.fields import ParameterError
 from exubrush.parameters.io import load_case
-from exubrush.prepared import prepare
+from exubrush.run.prepared import prepare
+from exubrush.world.motion import TabulatedSlide
 
 SLIDE = "time [s],slider_position [mm]\n0,0\n1,5\n2,0\n"
 
@@ -157,7 +157,7 @@ def test_a_stepped_slide_never_leaves_the_range_of_its_data():
 
 
 def test_a_changed_slide_csv_is_never_resumed_into(tmp_path):
-    from exubrush.rundir import RunDirectory, RunDirectoryError
+    from exubrush.run.rundir import RunDirectory, RunDirectoryError
 
     first = _csv_case(tmp_path, SLIDE.encode())
     RunDirectory(tmp_path / "run", first)

@@ -74,7 +74,7 @@ def test_tension_is_fitted_and_out_of_range_refused():
 @pytest.mark.slow
 def test_a_case_can_take_its_prb_parameters_from_the_fit():
     from exubrush.parameters.io import load_case
-    from exubrush.prepared import prb_parameters
+    from exubrush.run.prepared import prb_parameters
 
     fitted = load_case("parallel", ["model.kind='prb'", "model.prb_parameters='fitted'"])
     table = load_case("parallel", ["model.kind='prb'"])

@@ -14,7 +14,7 @@ import pytest
 
 from exubrush.parameters.fields import ParameterError
 from exubrush.parameters.io import load_case
-from exubrush.prepared import prepare
+from exubrush.run.prepared import prepare
 
 MALFORMED = [
     # lengths, moduli and other positive quantities

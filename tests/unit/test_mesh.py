@@ -5,11 +5,11 @@ import numpy as np
 import pytest
 import trimesh
 
-from exubrush.mesh import MESH_UNITS, MeshError, frame_with_normal, read_mesh
 from exubrush.parameters.case import MESH_UNITS as PARAMETER_UNITS
 from exubrush.parameters.fields import ParameterError
 from exubrush.parameters.io import load_case
-from exubrush.prepared import prepare
+from exubrush.run.prepared import prepare
+from exubrush.world.mesh import MESH_UNITS, MeshError, frame_with_normal, read_mesh
 
 
 @pytest.fixture(scope="module")
@@ -56,7 +56,7 @@ def test_closest_points_are_those_of_all_triangles(sphere_file):
 def test_over_a_face_the_normal_is_the_faces_exactly():
     triangles = np.array([[[-50.0, -50.0, 0.0], [50.0, -50.0, 0.0], [50.0, 50.0, 0.0]],
                           [[-50.0, -50.0, 0.0], [50.0, 50.0, 0.0], [-50.0, 50.0, 0.0]]])
-    from exubrush.mesh import MeshSurface
+    from exubrush.world.mesh import MeshSurface
 
     mesh = MeshSurface.from_triangles(triangles)
     point, normal, signed = mesh.closest([0.123, -7.7, 0.39])

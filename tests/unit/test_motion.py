@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from exubrush.motion import HeadMotion, SineSlide, TabulatedSlide, read_slide_csv, smooth_step
+from exubrush.world.motion import HeadMotion, SineSlide, TabulatedSlide, read_slide_csv, smooth_step
 
 
 def _finite_difference(f, t, h=1e-5):
@@ -57,7 +57,7 @@ def test_slide_csv_with_units(tmp_path):
 
 
 def test_records_at_step_ends_land_on_the_output_grid():
-    from exubrush.solve import on_output_grid
+    from exubrush.run.solve import on_output_grid
 
     # records at the first step end at or after each 0.01 s, as Exudyn writes them
     times = np.array([0.0, 0.0104, 0.02, 0.0301, 0.0407])

@@ -1,9 +1,9 @@
-"""The backtracking line search's step length (exubrush.newton.backtrack) on residual
+"""The backtracking line search's step length (exubrush.run.newton.backtrack) on residual
 profiles whose answer follows from Armijo's condition by hand."""
 
 import pytest
 
-from exubrush.newton import SHORTEST, SUFFICIENT_DECREASE, backtrack
+from exubrush.run.newton import SHORTEST, SUFFICIENT_DECREASE, backtrack
 
 
 def _profile(residual):

@@ -10,7 +10,7 @@ from exubrush.contact.laws import friction_coefficient, sphere_plane_force
 from exubrush.parameters.case import ContactLaw
 from exubrush.parameters.fields import MAGNITUDE, ParameterError
 from exubrush.parameters.io import load_case
-from exubrush.units import UnitError
+from exubrush.util.units import UnitError
 
 positive = st.floats(1e-3, 1e3, allow_nan=False)
 speed = st.floats(0.0, 1e3, allow_nan=False)

@@ -1,5 +1,5 @@
 """The references: which ones a run relied on, one text everywhere they are cited
-(exubrush/references.py, README.md, docs/model.md, CITATION.cff), and run.json readers
+(exubrush/util/references.py, README.md, docs/model.md, CITATION.cff), and run.json readers
 that do not need them."""
 
 import json
@@ -9,7 +9,8 @@ from pathlib import Path
 import yaml
 
 from exubrush.parameters.case import orthogonal_case
-from exubrush.references import (
+from exubrush.run.rundir import recorded_status, run_record
+from exubrush.util.references import (
     BRISTLE_CONTACT,
     FLORES,
     FRICTION,
@@ -20,7 +21,6 @@ from exubrush.references import (
     Reference,
     run_references,
 )
-from exubrush.rundir import recorded_status, run_record
 
 ROOT = Path(__file__).parents[2]
 

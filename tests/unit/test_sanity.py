@@ -3,7 +3,7 @@
 import pytest
 
 from exubrush.parameters.io import load_case
-from exubrush.prepared import prepare
+from exubrush.run.prepared import prepare
 
 
 def test_bound_of_one_default_bristle_by_hand():

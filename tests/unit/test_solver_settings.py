@@ -1,4 +1,4 @@
-"""Solver parameters reach Exudyn's SimulationSettings (exubrush.solver)."""
+"""Solver parameters reach Exudyn's SimulationSettings (exubrush.run.solver)."""
 
 import math
 from types import SimpleNamespace
@@ -8,8 +8,8 @@ import pytest
 
 from exubrush.parameters.case import Solver
 from exubrush.parameters.io import load_case
-from exubrush.prepared import prepare
-from exubrush.solver import dynamic_settings, fresh_jacobian_after_step_change, step_cap
+from exubrush.run.prepared import prepare
+from exubrush.run.solver import dynamic_settings, fresh_jacobian_after_step_change, step_cap
 
 
 def test_threads_and_linear_solver_reach_exudyn():

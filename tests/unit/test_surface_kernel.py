@@ -14,7 +14,7 @@ from exubrush.contact.surface_kernel import (
     surface_numbers,
 )
 from exubrush.parameters.case import ContactLaw, Surface
-from exubrush.surfaces import features
+from exubrush.world.surfaces import features
 
 LAW = ContactLaw()
 SURFACES = [

@@ -6,7 +6,7 @@ import pytest
 from exubrush.contact.surface_kernel import surface_numbers
 from exubrush.parameters.case import Surface
 from exubrush.parameters.surface_kinds import KINDS, SURFACE_KIND, SURFACE_KINDS
-from exubrush.surfaces import features, height
+from exubrush.world.surfaces import features, height
 
 
 def test_every_kind_is_named_once_and_a_case_accepts_exactly_these():

@@ -7,10 +7,10 @@ import numpy as np
 import pytest
 from scipy.spatial import cKDTree
 
-from exubrush.cleaning import contact_geometry
-from exubrush.float_math import FLOAT_MATH
+from exubrush.output.cleaning import contact_geometry
 from exubrush.parameters.case import Surface
-from exubrush.surfaces import (
+from exubrush.util.float_math import FLOAT_MATH
+from exubrush.world.surfaces import (
     Choice,
     Feature,
     features,

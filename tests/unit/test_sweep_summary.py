@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from exubrush.results import Results
+from exubrush.output.results import Results
 from exubrush.sweep.summary import run_metrics, sensitivities
 
 PERIOD, AMPLITUDE, REST = 2.0, 3.0, 1.0  # s, mm, s

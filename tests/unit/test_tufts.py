@@ -10,7 +10,7 @@ from exubrush.models.geometry import head_bristles
 from exubrush.parameters.case import BUILT_IN_MATERIALS, tuft_case
 from exubrush.parameters.fields import ParameterError
 from exubrush.parameters.io import load_case
-from exubrush.prepared import prepare
+from exubrush.run.prepared import prepare
 
 TABLE = """# a two-tuft head, a comment line
 name,x [mm],y [mm],diameter [mm],filaments,material,length [cm]

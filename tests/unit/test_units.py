@@ -10,7 +10,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from exubrush.parameters.case import Case
-from exubrush.units import CONVERSION_FACTORS, convert, registry, to_internal
+from exubrush.util.units import CONVERSION_FACTORS, convert, registry, to_internal
 
 
 def declared_pairs(cls: type) -> set[tuple[str, str]]:

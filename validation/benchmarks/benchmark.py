@@ -49,7 +49,7 @@ from pathlib import Path
 
 import numpy as np
 
-from exubrush.experiment import (
+from exubrush.output.experiment import (
     Alignment,
     ForceSeries,
     align,
@@ -57,13 +57,13 @@ from exubrush.experiment import (
     reversal_zones,
     strokes,
 )
+from exubrush.output.plotting import figure
+from exubrush.output.results import Results, read_results
 from exubrush.parameters.fields import ParameterError
 from exubrush.parameters.io import load_case
-from exubrush.plotting import figure
-from exubrush.prepared import prepare
 from exubrush.presets import PRESETS
-from exubrush.results import Results, read_results
-from exubrush.rundir import unusable_directory
+from exubrush.run.prepared import prepare
+from exubrush.run.rundir import unusable_directory
 from exubrush.simulation import simulate
 
 FLAT_SPEED = 0.8

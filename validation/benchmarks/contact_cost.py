@@ -44,7 +44,7 @@ from benchmark import (  # noqa: E402  (a script beside this one)
     source_trees,
 )
 
-from exubrush.files import write_csv  # noqa: E402
+from exubrush.util.files import write_csv  # noqa: E402
 
 HERE = Path(__file__).parent
 CONTACT = "contact.between_bristles=true"

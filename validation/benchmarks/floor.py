@@ -17,9 +17,9 @@ import time
 from concurrent.futures import ProcessPoolExecutor
 
 from exubrush.parameters.case import Case
-from exubrush.prepared import PreparedCase, prepare
-from exubrush.scene import build_scene
-from exubrush.solve import group_settings, solver_statistics
+from exubrush.run.prepared import PreparedCase, prepare
+from exubrush.run.scene import build_scene
+from exubrush.run.solve import group_settings, solver_statistics
 
 
 def floor_group(prepared: PreparedCase, selection: tuple[int, ...]) -> dict:

@@ -21,7 +21,7 @@ from benchmark import run_in_tree
 
 from exubrush.parameters.fields import ParameterError
 from exubrush.parameters.io import load_case
-from exubrush.prepared import prepare
+from exubrush.run.prepared import prepare
 
 TREE = Path(__file__).resolve().parents[2]  # this source tree
 

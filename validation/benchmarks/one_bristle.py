@@ -8,9 +8,9 @@ import argparse
 
 from exubrush.parameters.fields import ParameterError
 from exubrush.parameters.io import load_case
-from exubrush.prepared import prepare
-from exubrush.scene import build_scene
-from exubrush.solve import group_settings
+from exubrush.run.prepared import prepare
+from exubrush.run.scene import build_scene
+from exubrush.run.solve import group_settings
 
 
 def add_arguments(parser: argparse.ArgumentParser, case: str, bristle: int) -> None:

@@ -19,7 +19,7 @@ os.environ["EXUBRUSH_EXUDYN_CHECKS"] = "1"  # before exubrush chooses Exudyn's c
 
 from one_bristle import add_arguments, build  # noqa: E402
 
-from exubrush.solve import solver_statistics  # noqa: E402
+from exubrush.run.solve import solver_statistics  # noqa: E402
 
 
 def main() -> None:

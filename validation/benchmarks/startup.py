@@ -37,7 +37,7 @@ sys.path.insert(0, str(Path(__file__).parent))
 
 from benchmark import output_folder  # noqa: E402  (a script beside this one)
 
-from exubrush.files import write_csv  # noqa: E402
+from exubrush.util.files import write_csv  # noqa: E402
 
 REPOSITORY = Path(__file__).resolve().parents[2]
 RUN = ["run", "orthogonal", "--periods", "1", "--quiet", "--overwrite"]

@@ -26,8 +26,8 @@ import numpy as np
 from one_bristle import add_arguments, build
 
 from exubrush.contact.laws import feature_slip
-from exubrush.solve import solver_statistics
-from exubrush.surfaces import features, taken
+from exubrush.run.solve import solver_statistics
+from exubrush.world.surfaces import features, taken
 
 MAX_BINS = 10_000  # rows of the --bins table
 

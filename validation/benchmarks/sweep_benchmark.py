@@ -39,7 +39,7 @@ from exubrush.execution import SolveTask
 from exubrush.execution.cluster import dask_executor
 from exubrush.execution.local import ProcessExecutor, SerialExecutor
 from exubrush.parameters.io import load_case
-from exubrush.prepared import prepare
+from exubrush.run.prepared import prepare
 from exubrush.simulation import simulate
 from exubrush.sweep.plan import read_sweep
 from exubrush.sweep.runner import prepare_runs, run_sweep

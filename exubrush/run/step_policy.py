@@ -4,7 +4,7 @@ In steady sliding Newton converges in one or two iterations, so the step may gro
 ``solver.step_size`` to the larger sliding step there; near reversals, in the friction
 law's Stribeck band and where tips can snap off edges it stays ``step_size``
 (docs/model.md, "Steps in the middle of a stroke"). :func:`sliding_step_cap` makes the
-step hook that sets Exudyn's cap (exubrush.solver.step_cap) accordingly.
+step hook that sets Exudyn's cap (exubrush.run.solver.step_cap) accordingly.
 """
 
 from __future__ import annotations
@@ -15,12 +15,12 @@ import exudyn as exu
 import numpy as np
 
 from exubrush.parameters.surface_kinds import SURFACE_KIND
-from exubrush.solver import step_cap
-from exubrush.surfaces import flat_top_clearance
+from exubrush.run.solver import step_cap
+from exubrush.world.surfaces import flat_top_clearance
 
 if TYPE_CHECKING:
-    from exubrush.motion import HeadMotion
     from exubrush.parameters.case import Case, Surface
+    from exubrush.world.motion import HeadMotion
 
 # the larger steps also need the slide at this multiple of the tip law's v_d or faster:
 # where the tips' slip enters the Stribeck band (below v_d) Newton's trouble starts; the
@@ -67,8 +67,8 @@ def tips_on_flat_tops(surface: Surface, tips: list, ahead: float, speed: float):
     row, before the rounded edges begin, for its radius and its travel over ``ahead`` [s]
     at ``speed`` (the head's peak [mm/s]) or at its own speed along the row if faster (so
     that no large step carries it onto an edge or into a gap;
-    exubrush.surfaces.flat_top_clearance)."""
-    # the along-row coordinate of exubrush.surfaces.to_surface_frame, in plain arithmetic:
+    exubrush.world.surfaces.flat_top_clearance)."""
+    # the along-row coordinate of exubrush.world.surfaces.to_surface_frame, in plain arithmetic:
     # this runs for every tip and step
     cosine, sine = np.cos(surface.yaw), np.sin(surface.yaw)
     position = exu.OutputVariableType.Position

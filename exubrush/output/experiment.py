@@ -25,7 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import minimize_scalar
 
-from exubrush.tables import check_time_axis, read_unit_table
+from exubrush.util.tables import check_time_axis, read_unit_table
 
 MEASURED_COLUMNS = {
     "time": "s",
@@ -46,7 +46,7 @@ class ForceSeries:
 
     @classmethod
     def from_results(cls, results) -> ForceSeries:
-        """The forces of a simulation (:class:`exubrush.results.Results`)."""
+        """The forces of a simulation (:class:`exubrush.output.results.Results`)."""
         return cls(results.time, results.slider_position, results.normal_force,
                    results.tangential_force)
 

@@ -11,7 +11,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from exubrush.motion import HeadMotion
+from exubrush.world.motion import HeadMotion
 
 SLIDE_AXES = {"orthogonal": np.array([0.0, 1.0, 0.0]), "parallel": np.array([1.0, 0.0, 0.0])}
 DOWN = np.array([0.0, 0.0, -1.0])  # the approach: towards the surface z = 0

@@ -6,8 +6,8 @@ import json
 import math
 from pathlib import Path
 
-from exubrush.experiment import Aligned
-from exubrush.files import atomic_file
+from exubrush.output.experiment import Aligned
+from exubrush.util.files import atomic_file
 
 
 def _pct(value) -> str:
@@ -81,7 +81,7 @@ def summary_markdown(comparison: dict, sources: dict, flat_speed_fraction: float
 def write_comparison(aligned: Aligned, comparison: dict, directory: Path, sources: dict,
                      flat_speed_fraction: float) -> list[str]:
     """Write comparison.json, comparison.md and the plots into ``directory``; return names."""
-    from exubrush.plotting import plot_comparison
+    from exubrush.output.plotting import plot_comparison
 
     directory.mkdir(parents=True, exist_ok=True)
     record = {"sources": sources, "time_offset_s": aligned.time_offset,

@@ -1,6 +1,6 @@
 """What a run will cost, and whether its settings resolve its motion (pure).
 
-Checked by :func:`exubrush.prepared.prepare` before any Exudyn system is built, so that a
+Checked by :func:`exubrush.run.prepared.prepare` before any Exudyn system is built, so that a
 run which would take days, exhaust memory or step over its own motion is refused at once
 with one line: the estimate, the limit and the setting that changes it.
 

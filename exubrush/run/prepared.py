@@ -15,7 +15,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from exubrush.budget import (
+from exubrush.models.geometry import BristleGeometry, can_reach, head_bristles, touching_groups
+from exubrush.models.howell import howell_parameters
+from exubrush.models.stiffness import buckling_load
+from exubrush.parameters.case import Case
+from exubrush.parameters.fields import ParameterError
+from exubrush.run.budget import (
     WorkEstimate,
     estimate,
     motion_warnings,
@@ -23,16 +28,11 @@ from exubrush.budget import (
     over_work,
     unresolved,
 )
-from exubrush.kinematics import SLIDE_AXES
-from exubrush.mesh import MeshError, MeshSurface, read_mesh
-from exubrush.models.geometry import BristleGeometry, can_reach, head_bristles, touching_groups
-from exubrush.models.howell import howell_parameters
-from exubrush.models.stiffness import buckling_load
-from exubrush.motion import HeadMotion, TabulatedSlide, head_motion
-from exubrush.parameters.case import Case
-from exubrush.parameters.fields import ParameterError
-from exubrush.sanity import normal_force_bound, static_force_limits
-from exubrush.surfaces import highest_near, to_surface_frame
+from exubrush.run.sanity import normal_force_bound, static_force_limits
+from exubrush.world.kinematics import SLIDE_AXES
+from exubrush.world.mesh import MeshError, MeshSurface, read_mesh
+from exubrush.world.motion import HeadMotion, TabulatedSlide, head_motion
+from exubrush.world.surfaces import highest_near, to_surface_frame
 
 
 @dataclass(frozen=True)
@@ -73,14 +73,14 @@ class PreparedCase:
     friction_window : (float, float) or None
         Times [s] between which friction is blended in; None: it acts from the start.
     force_limits : tuple of float
-        Each bristle's force straight and fully compressed [N] (exubrush.sanity).
+        Each bristle's force straight and fully compressed [N] (exubrush.run.sanity).
     groups : tuple
         The bristle groups solved as separate Exudyn systems: tuples of bristle indices.
     work : WorkEstimate
-        What the run will cost (exubrush.budget), within ``case.limits``.
+        What the run will cost (exubrush.run.budget), within ``case.limits``.
     inputs : tuple of (str, str)
         (key, SHA-256 of what was read from it) for every input file the case names, so
-        that a resume can tell a changed file from the same one (exubrush.rundir).
+        that a resume can tell a changed file from the same one (exubrush.run.rundir).
     warnings : tuple of str
         What the user should know before the run (e.g. a slide CSV faster than the step).
     reaching : tuple of bool
@@ -205,7 +205,7 @@ def surface_reach(case: Case, bristles, motion: HeadMotion, mesh: MeshSurface | 
 
     A tip's lowest point reaches at most l + r below its root, which stands
     ``motion.interaction_distance`` above the surface's top, and at most l + r to the side
-    of it; it can touch if the surface's top (exubrush.surfaces.highest_near) rises above
+    of it; it can touch if the surface's top (exubrush.world.surfaces.highest_near) rises above
     that depth anywhere within that distance of the root, at any of ``samples`` slide
     positions (on a mesh: anywhere near the root's straight path, an upper bound). On the
     plane this is d < l + r.

@@ -29,18 +29,18 @@ from pathlib import Path
 
 import numpy as np
 
-from exubrush.files import DamagedFile, atomic_file, read_npz
+from exubrush.output.results import RESULT_FILES as SAVED_FILES
 from exubrush.parameters.fields import to_plain
-from exubrush.prepared import PreparedCase
-from exubrush.provenance import code_identity
-from exubrush.results import RESULT_FILES as SAVED_FILES
-from exubrush.solution import GroupSolution
-from exubrush.solution_files import SOLUTION_FILE
+from exubrush.run.prepared import PreparedCase
+from exubrush.run.solution import GroupSolution
+from exubrush.run.solution_files import SOLUTION_FILE
+from exubrush.util.files import DamagedFile, atomic_file, read_npz
+from exubrush.util.provenance import code_identity
 
 CHECKPOINT = ".checkpoint"
 CODE_FILE = "code.json"  # the exubrush version and commit that wrote the checkpoint
 # what Results.save writes, run.json, and the solution file exubrush view writes beside
-# them (exubrush.viewer)
+# them (exubrush.output.viewer)
 RESULT_FILES = (*SAVED_FILES, "run.json", SOLUTION_FILE)
 
 

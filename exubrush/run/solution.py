@@ -2,7 +2,7 @@
 
 The executor moves these records between processes (or cluster workers), the run directory
 stores them as checkpoints and the assembly turns them into results; none of those needs
-Exudyn, so this module does not import it (exubrush.solve makes them).
+Exudyn, so this module does not import it (exubrush.run.solve makes them).
 """
 
 from __future__ import annotations
@@ -24,7 +24,7 @@ class SolverStatistics:
     newton_iterations: int = 0
     jacobian_updates: int = 0
     rejected_modified_newton_steps: int = 0
-    # Newton updates that the line search shortened (exubrush.newton)
+    # Newton updates that the line search shortened (exubrush.run.newton)
     shortened_updates: int = 0
 
     def __add__(self, other: SolverStatistics) -> SolverStatistics:

@@ -28,26 +28,26 @@ from exubrush.contact.exudyn_contact import (
 )
 from exubrush.contact.laws import builtin_contact_parameters, drop_can_lag
 from exubrush.contact.tip_force import contact_force_output
-from exubrush.mesh import frame_with_normal
 from exubrush.models.assembly import rigid_marker
 from exubrush.models.dfm import add_dfm_bristle
 from exubrush.models.geometry import BristleGeometry
 from exubrush.models.prb import add_prb_bristle, stub_graphics
 from exubrush.models.stiffness import buckling_load
-from exubrush.motion import HeadMotion
-from exubrush.newton import LineSearch, after_step_cut, has_lie_group_nodes
 from exubrush.parameters.surface_kinds import SURFACE_KIND
-from exubrush.prepared import PreparedCase
-from exubrush.solver import fresh_jacobian_after_step_change, linear_solver
-from exubrush.step_policy import sliding_step_cap
-from exubrush.surfaces import orientation, tooth_pitch
+from exubrush.run.newton import LineSearch, after_step_cut, has_lie_group_nodes
+from exubrush.run.prepared import PreparedCase
+from exubrush.run.solver import fresh_jacobian_after_step_change, linear_solver
+from exubrush.run.step_policy import sliding_step_cap
+from exubrush.world.mesh import frame_with_normal
+from exubrush.world.motion import HeadMotion
+from exubrush.world.surfaces import orientation, tooth_pitch
 
 if TYPE_CHECKING:
     from exubrush.contact.exudyn_between import BristleContact
 
 # the handle is a stiff block whose mass only enters the drive reaction, from which the
 # exact inertia force m·a of the prescribed motion is removed again
-# (exubrush.kinematics.head_force)
+# (exubrush.world.kinematics.head_force)
 HANDLE_SIZE = (20.0, 8.0, 3.0)  # mm
 HANDLE_DENSITY = 1.2e-9  # t/mm³ (acrylic-like)
 
@@ -263,7 +263,7 @@ def compiles_contact(case, mbs, tip_node) -> bool:
 def law_surface(case):
     """The surface the tip law is written for: None for the plane law, which a plane and a
     mesh (in a frame on its tangent plane, moved before every step) both use, else the
-    case's analytic surface (exubrush.surfaces.features)."""
+    case's analytic surface (exubrush.world.surfaces.features)."""
     return None if SURFACE_KIND[case.surface.kind].plane_law else case.surface
 
 
@@ -408,7 +408,7 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
 
 
 def _add_line_search(scene: Scene, setting: str) -> None:
-    """Run Newton's line search (exubrush.newton) as ``solver.line_search`` says. "auto":
+    """Run Newton's line search (exubrush.run.newton) as ``solver.line_search`` says. "auto":
     "always" in a group of touching bristles (a Newton iteration there costs a Jacobian of
     the group, the search's Python next to nothing), off elsewhere: one bristle's Jacobian
     is cheap, and on the tooth row 45 % fewer Jacobians saved 2 % of CPU time while the

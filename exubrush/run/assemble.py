@@ -1,9 +1,9 @@
-"""Turn the group solutions of a run into its :class:`~exubrush.results.Results`.
+"""Turn the group solutions of a run into its :class:`~exubrush.output.results.Results`.
 
 The head force is the sum of the groups' forces with the handles' inertia removed
-(:func:`exubrush.kinematics.head_force`); shapes gain their roots; the run record
+(:func:`exubrush.world.kinematics.head_force`); shapes gain their roots; the run record
 (``Results.metadata``) says what was run, by which code, on which published models and
-laws (exubrush.references), how it went and why it stopped.
+laws (exubrush.util.references), how it went and why it stopped.
 """
 
 from __future__ import annotations
@@ -15,15 +15,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from exubrush.exudyn_build import build_in_use
-from exubrush.kinematics import handle_history, head_force
+from exubrush.output.results import Results
 from exubrush.parameters.fields import to_plain
-from exubrush.prepared import PreparedCase
-from exubrush.provenance import code_identity, package_version
-from exubrush.references import run_references
-from exubrush.results import Results
-from exubrush.solution import GroupSolution, SolverStatistics
-from exubrush.solution_files import head_coordinates
+from exubrush.run.prepared import PreparedCase
+from exubrush.run.solution import GroupSolution, SolverStatistics
+from exubrush.run.solution_files import head_coordinates
+from exubrush.util.exudyn_build import build_in_use
+from exubrush.util.provenance import code_identity, package_version
+from exubrush.util.references import run_references
+from exubrush.world.kinematics import handle_history, head_force
 
 
 @dataclass(frozen=True)

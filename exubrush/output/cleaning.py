@@ -2,7 +2,7 @@
 
 Computed after a run from each tip's centre and contact force at the force interval
 (``Results.tip_position``, ``Results.tip_force``), in the surface frame
-(exubrush.surfaces). Definitions:
+(exubrush.world.surfaces). Definitions:
 
 - **In contact**: the tip's contact force exceeds :data:`NO_CONTACT_FORCE`. Its contact
   point is the point of the nearest surface feature below the centre, c − r n; its
@@ -20,7 +20,7 @@ Computed after a run from each tip's centre and contact force at the force inter
   normal) integrated over the stroke, over the same for the whole head; its spread is the
   coefficient of variation (standard deviation / mean) over the bristles of the head.
 - **Interdental penetration** (tooth row): a tip is in a gap when its centre lies over the
-  gap (|u| > w/2, exubrush.surfaces.fold) and its lowest point below the tooth tops; its
+  gap (|u| > w/2, exubrush.world.surfaces.fold) and its lowest point below the tooth tops; its
   depth is how far below the tops that point is [mm]. Per stroke and gap: the deepest tip
   and every tip's deepest; the time tips spent in gaps [tip-seconds].
 """
@@ -32,9 +32,16 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from exubrush.float_math import ARRAY_MATH
-from exubrush.metrics import NO_CONTACT_FORCE
-from exubrush.surfaces import features, fold, orientation, resolve, to_surface_frame, tooth_pitch
+from exubrush.output.metrics import NO_CONTACT_FORCE
+from exubrush.util.float_math import ARRAY_MATH
+from exubrush.world.surfaces import (
+    features,
+    fold,
+    orientation,
+    resolve,
+    to_surface_frame,
+    tooth_pitch,
+)
 
 if TYPE_CHECKING:
     from exubrush.parameters.case import Surface
@@ -59,7 +66,7 @@ def contact_geometry(surface: Surface, centres: np.ndarray, radius: np.ndarray, 
         Tip centres, head frame fixed to the surface [mm].
     radius : ndarray (n_bristles,)
         Tip radii [mm].
-    mesh : exubrush.mesh.MeshSurface, optional
+    mesh : exubrush.world.mesh.MeshSurface, optional
         The surface's mesh (surface.kind "mesh").
 
     Returns

@@ -3,7 +3,7 @@
 This is the unit of work an executor (exubrush.execution) runs, in this process, in a
 worker process or on a cluster: :func:`solve_group` takes the prepared case and the
 indices of the bristles, and returns a :class:`GroupSolution`, a typed, picklable record
-of plain arrays (exubrush.solution). It does not know where it runs: progress and stop
+of plain arrays (exubrush.run.solution). It does not know where it runs: progress and stop
 requests go through a :class:`SolveMonitor` the executor provides.
 """
 
@@ -18,13 +18,13 @@ import exudyn as exu
 import numpy as np
 
 from exubrush.contact.tip_force import force_on_tip
-from exubrush.newton import LineSearch
-from exubrush.prepared import PreparedCase
-from exubrush.sanity import beyond_bound_message
-from exubrush.scene import Scene, build_scene
-from exubrush.solution import INTERRUPTED, GroupSolution, SolverStatistics
-from exubrush.solution_files import read_coordinate_file
-from exubrush.solver import dynamic_settings, record_coordinates
+from exubrush.run.newton import LineSearch
+from exubrush.run.prepared import PreparedCase
+from exubrush.run.sanity import beyond_bound_message
+from exubrush.run.scene import Scene, build_scene
+from exubrush.run.solution import INTERRUPTED, GroupSolution, SolverStatistics
+from exubrush.run.solution_files import read_coordinate_file
+from exubrush.run.solver import dynamic_settings, record_coordinates
 
 PROGRESS_STEP = 0.05  # s of simulated time between two checks (progress, stop, divergence)
 STOP_CHECK_INTERVAL = 0.5  # s of wall time between two looks for a stop request

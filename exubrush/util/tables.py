@@ -38,7 +38,7 @@ def read_unit_table(path: str | Path, columns: dict[str, str], what: str) -> dic
         With the file, line and column at fault: missing file, too few rows, a missing
         column or unit, a unit of the wrong dimension, a cell that is not a number.
     """
-    from exubrush.units import UnitError, to_internal
+    from exubrush.util.units import UnitError, to_internal
 
     name = f"{what} {str(path)!r}"
     rows = read_rows(path, what)

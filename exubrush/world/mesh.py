@@ -2,7 +2,7 @@
 
 A mesh surface is read once (``surface.mesh_file``, STL or OBJ, coordinates in
 ``surface.mesh_unit``), converted to mm and shifted so that its highest vertex lies at
-z = 0, like every surface's top (exubrush.surfaces); x and y stay as in the file. Its
+z = 0, like every surface's top (exubrush.world.surfaces); x and y stay as in the file. Its
 triangles' winding gives their outward normals (counter-clockwise seen from outside, the
 STL and OBJ convention), so an open mesh such as a patch of a plane is a surface too, as
 long as the winding is consistent.

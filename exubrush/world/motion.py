@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from exubrush.tables import check_time_axis, read_unit_table
+from exubrush.util.tables import check_time_axis, read_unit_table
 
 if TYPE_CHECKING:
     from exubrush.models.geometry import BristleGeometry
@@ -164,7 +164,7 @@ def read_slide_csv(path: str | Path) -> TabulatedSlide:
 
     Other columns and ``#`` comment lines are ignored; the unit in each header is
     converted (e.g. ``[ms]``, ``[m]``), and a header without a unit is refused
-    (:func:`exubrush.tables.read_unit_table`).
+    (:func:`exubrush.util.tables.read_unit_table`).
     """
     name = f"slide CSV {str(path)!r}"
     data = read_unit_table(path, {"time": "s", "slider_position": "mm"}, "slide CSV")

@@ -16,13 +16,13 @@ from pathlib import Path
 
 import numpy as np
 
-from exubrush.cleaning import TipContacts, cleaning_summary, part_names, touching_geometry
-from exubrush.files import atomic_file, read_npz, write_csv
-from exubrush.mesh import MeshError, read_mesh
-from exubrush.metrics import friction_coefficient, travelled_distance
 from exubrush.models.geometry import head_bristles
+from exubrush.output.cleaning import TipContacts, cleaning_summary, part_names, touching_geometry
+from exubrush.output.metrics import friction_coefficient, travelled_distance
 from exubrush.parameters.case import Case
 from exubrush.parameters.fields import ParameterError, build
+from exubrush.util.files import atomic_file, read_npz, write_csv
+from exubrush.world.mesh import MeshError, read_mesh
 
 RESULT_FILES = ("forces.csv", "shapes.npz", "forces.png", "tips.npz", "summary.json",
                 "cleaning.png")
@@ -46,11 +46,11 @@ class Results:
     fixed to the surface. ``shape_coordinates``, kept only if the run was asked to
     (``output.solution_file = true``), holds rows (time [s], the head's ODE2 coordinates [mm, rad
     or Euler parameters]) at the shape interval, for Exudyn's SolutionViewer
-    (exubrush.viewer).
+    (exubrush.output.viewer).
 
     ``tip_position`` [mm] and ``tip_force`` [N], each (n_t, n_bristles, 3) on ``time``, are
     every tip-sphere centre and the surface's contact force on it, head frame fixed to the
-    surface: what the cleaning metrics (exubrush.cleaning) are computed from.
+    surface: what the cleaning metrics (exubrush.output.cleaning) are computed from.
     """
 
     time: np.ndarray
@@ -90,7 +90,7 @@ class Results:
 
     @functools.cached_property
     def tip_contacts(self) -> TipContacts | None:
-        """Where each tip touched the surface (exubrush.cleaning.touching_geometry),
+        """Where each tip touched the surface (exubrush.output.cleaning.touching_geometry),
         computed once; None without tip data or when the run's mesh file is gone."""
         if self.tip_position is None or self.tip_force is None or len(self.time) == 0:
             return None
@@ -113,7 +113,7 @@ class Results:
                                 contacts=contacts)
 
     def cleaning(self) -> dict | None:
-        """The cleaning metrics of the run (exubrush.cleaning.cleaning_summary), computed
+        """The cleaning metrics of the run (exubrush.output.cleaning.cleaning_summary), computed
         once; None without tip data or when the run's mesh file is gone."""
         return self._cleaning_summary
 
@@ -122,7 +122,7 @@ class Results:
         return [b.tip_radius for b in head_bristles(case.head)]
 
     def surface_mesh(self):
-        """The run's surface mesh (exubrush.mesh.MeshSurface) read again from its file, or
+        """The run's surface mesh (exubrush.world.mesh.MeshSurface) read again from its file, or
         None on an analytic surface; MeshError if the file is gone or unreadable."""
         surface = self.case().surface
         if surface.kind != "mesh":
@@ -153,7 +153,7 @@ class Results:
             extra = {} if self.shape_coordinates is None else {
                 "coordinates": self.shape_coordinates}
             np.savez_compressed(handle, time=self.shape_time, nodes=self.shape_nodes, **extra)
-        from exubrush.plotting import plot_cleaning, plot_forces  # matplotlib when drawn
+        from exubrush.output.plotting import plot_cleaning, plot_forces  # matplotlib when drawn
 
         with atomic_file(directory / "forces.png", "wb") as handle:
             plot_forces(self, handle)
@@ -214,7 +214,7 @@ def read_results(directory: str | Path) -> Results:
         If the directory or one of its files is missing or unreadable; the message says
         which and how the directory is made.
     """
-    from exubrush.tables import read_unit_table
+    from exubrush.util.tables import read_unit_table
 
     directory = Path(directory)
     meta_path = directory / "run.json"

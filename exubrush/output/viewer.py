@@ -2,7 +2,7 @@
 coordinates the run kept (case parameter ``output.solution_file = true``, or
 ``exubrush run --viewer``).
 
-The groups' rows are joined into the head as one system (exubrush.solution_files); the
+The groups' rows are joined into the head as one system (exubrush.run.solution_files); the
 system ``exubrush view`` builds is the whole head with graphics, and :func:`viewer_scene`
 checks its size against the rows before anything is shown.
 """
@@ -15,15 +15,15 @@ from pathlib import Path
 
 import numpy as np
 
-from exubrush.results import Results, ResultsError, read_results
-from exubrush.solution_files import SOLUTION_FILE, write_solution_file
+from exubrush.output.results import Results, ResultsError, read_results
+from exubrush.run.solution_files import SOLUTION_FILE, write_solution_file
 
 
 def viewer_scene(results: Results):
     """The run's head as one Exudyn system with graphics, checked against its coordinates."""
     from exubrush.parameters.fields import ParameterError
-    from exubrush.prepared import prepare
-    from exubrush.scene import build_scene
+    from exubrush.run.prepared import prepare
+    from exubrush.run.scene import build_scene
 
     try:
         prepared = prepare(results.case())

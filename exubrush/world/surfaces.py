@@ -14,7 +14,7 @@ a sphere in a narrow gap, or in the corner between a tooth's wall and the gap's 
 touches two features at once and feels both. At a convex rounded edge the normal turns
 smoothly with the closest point; the surface itself has no sharp convex edge.
 
-The functions are written once against a math back end ``m`` (exubrush.float_math): on
+The functions are written once against a math back end ``m`` (exubrush.util.float_math): on
 floats, element-wise on numpy arrays, or on Exudyn's symbolic expressions, which records
 them into the C++ contact user function.
 
@@ -39,7 +39,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from exubrush.float_math import ARRAY_MATH, FLOAT_MATH
+from exubrush.util.float_math import ARRAY_MATH, FLOAT_MATH
 
 if TYPE_CHECKING:  # only attributes are read: no import at run time
     from exubrush.parameters.case import Surface

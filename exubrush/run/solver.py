@@ -45,7 +45,7 @@ def dynamic_settings(solver: Solver, end_time: float, output_interval: float,
     the two together: 37-39 s -> 7.6 s (seed 1), 28-74 s -> 19 s (seed 2); each alone
     gained little or nothing (validation/benchmarks/README.md).
     ``force_tolerance`` [N]: Newton also accepts a step whose residual is below it
-    (:meth:`exubrush.prepared.PreparedCase.newton_force_tolerance`; docs/model.md, "Newton's
+    (:meth:`exubrush.run.prepared.PreparedCase.newton_force_tolerance`; docs/model.md, "Newton's
     tolerance"); Exudyn's absolute tolerance is the larger of it and
     ``solver.absolute_tolerance``.
     """
@@ -156,7 +156,7 @@ def step_cap(step_size: float, larger_step: float, larger_allowed):
 def record_coordinates(settings: exu.SimulationSettings, path: str, period: float) -> None:
     """Let the solver write the ODE2 coordinates (no velocities, accelerations, algebraic or
     data coordinates) to the text solution file ``path`` every ``period`` [s]: the format
-    Exudyn's SolutionViewer reads (exubrush.viewer)."""
+    Exudyn's SolutionViewer reads (exubrush.output.viewer)."""
     file = settings.solution.file
     file.write = True
     file.name = path

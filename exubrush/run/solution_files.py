@@ -4,7 +4,7 @@ rows into the whole head, writing the file Exudyn's SolutionViewer reads.
 Every bristle group is solved as its own Exudyn system, each with a copy of the handle.
 Their rows are joined into the coordinates of the whole head as one system: the handle's
 coordinates once, then each bristle's in order. That is the order of the system
-``exubrush view`` builds (exubrush.viewer).
+``exubrush view`` builds (exubrush.output.viewer).
 """
 
 from __future__ import annotations
@@ -14,7 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
-from exubrush.files import atomic_file
+from exubrush.util.files import atomic_file
 
 HANDLE_COORDINATES = 6  # the handle's node (RotationRxyz) is the first node of every system
 SOLUTION_FILE = "exudyn-solution.txt"

@@ -18,12 +18,12 @@ import numpy as np
 from matplotlib.collections import PatchCollection, PolyCollection
 from matplotlib.patches import Circle
 
-from exubrush.files import atomic_file
-from exubrush.mesh import MeshError, MeshSurface
+from exubrush.output.plotting import figure
+from exubrush.output.results import ResultsError, read_results
 from exubrush.parameters.case import BristleContactLaw, Surface
-from exubrush.plotting import figure
-from exubrush.results import ResultsError, read_results
-from exubrush.surfaces import height, to_surface_frame
+from exubrush.util.files import atomic_file
+from exubrush.world.mesh import MeshError, MeshSurface
+from exubrush.world.surfaces import height, to_surface_frame
 
 VIEW_AXES = {"orthogonal": (1, 0), "parallel": (0, 1)}  # (slide axis, other axis) in x, y, z
 

@@ -9,10 +9,10 @@ from __future__ import annotations
 import numpy as np
 from matplotlib.figure import Figure
 
-from exubrush.cleaning import footprint, gap_depth_history
-from exubrush.files import atomic_file
-from exubrush.metrics import friction_coefficient, travelled_distance
 from exubrush.models.geometry import head_bristles
+from exubrush.output.cleaning import footprint, gap_depth_history
+from exubrush.output.metrics import friction_coefficient, travelled_distance
+from exubrush.util.files import atomic_file
 
 
 def figure(rows: int, columns: int = 1, **options):
@@ -128,7 +128,7 @@ def plot_cleaning(results, summary: dict, contacts, target) -> None:
     """Footprint of contact on the surface, tips in contact against time, on a tooth row
     the deepest tip in a gap against time (elsewhere the wiped area per stroke), and each
     bristle's force share; PNG to ``target``. ``contacts``: the run's
-    exubrush.cleaning.TipContacts."""
+    exubrush.output.cleaning.TipContacts."""
     case = results.case()
     surface = case.surface
     radius = [b.tip_radius for b in head_bristles(case.head)]
