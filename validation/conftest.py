@@ -4,7 +4,7 @@ the slow tier; ``python -m pytest -m "not slow"`` leaves them out."""
 import pytest
 
 SLOW_NOTEBOOKS = {"howell_parameters.ipynb", "sliding_bristle.ipynb", "surfaces.ipynb",
-                  "bristle_contact.ipynb"}
+                  "bristle_contact.ipynb", "head_contact.ipynb", "elastica_convergence.ipynb"}
 
 
 def pytest_collection_modifyitems(items):

@@ -77,6 +77,7 @@ def test_a_filament_pushed_far_never_overlaps_its_neighbour_by_more_than_5_perce
     assert pushed.deepest < 0.05 * D
 
 
+@pytest.mark.slow  # about 12 s: a 7-filament tuft's run
 def test_a_tuft_with_contact_is_one_group_and_reports_its_contacts(cli, tmp_path):
     case = tmp_path / "tuft7.toml"
     case.write_text('name = "tuft7"\n[head]\nlayout = "tufts"\n[[head.tufts]]\n'

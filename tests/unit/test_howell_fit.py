@@ -43,6 +43,7 @@ def _check_against_table(n, gamma_table):
     return fit
 
 
+@pytest.mark.slow  # about 12 s: a fit to the exact elastica
 def test_pure_transverse_load_matches_howell():
     n, gamma_table, k_table = HOWELL_TABLE[0]
     fit = _check_against_table(float(n), gamma_table)
@@ -65,6 +66,7 @@ def test_fitted_k_theta_drifts_above_howells_with_n():
     assert np.all(np.diff(ratios) > 0.0), ratios
 
 
+@pytest.mark.slow  # about 11 s: a fit to the exact elastica
 def test_tension_is_fitted_and_out_of_range_refused():
     assert 0.85 < fit_prb_parameters(-1.0).gamma < 0.9  # γ grows as the load pulls
     with pytest.raises(ValueError, match="outside the fitted range"):

@@ -32,6 +32,7 @@ def test_small_loads_follow_beam_theory(load):
     assert pair.tips[1, 0] - (2 * R + GAP) == pytest.approx(contact * FLEXIBILITY, rel=5e-3)
 
 
+@pytest.mark.slow  # about 20 s: fine chain and the elastica's shooting
 def test_the_second_beam_is_the_exact_elastica_of_its_contact_force():
     # large deflection (10 % of L), touching at the first one's tip only: the second beam
     # up to the point the tip presses on is a cantilever under the contact force alone,
@@ -52,6 +53,7 @@ def test_the_second_beam_is_the_exact_elastica_of_its_contact_force():
     assert contact[1] == pytest.approx(tip[0], rel=2e-4)
 
 
+@pytest.mark.slow  # about 9 s: three chains
 def test_refining_the_chain_changes_the_answer_by_its_order():
     # 4 mN: touching along the length; errors of order 1/n² in the shape (a quarter from
     # 50 to 100 springs), the distributed contact force converges more slowly (measured:
