@@ -14,13 +14,19 @@ import exubrush
 ROOT = Path(__file__).parents[2]  # where pyproject.toml holds the contracts
 
 
+def fresh_python(script: str, cwd: Path | None = None) -> str:
+    """Standard output of ``script`` run in a new interpreter (modules it imports are not
+    yet loaded); fails the test with the interpreter's errors if it fails."""
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                          timeout=120, cwd=cwd)
+    assert done.returncode == 0, done.stdout[-3000:] + done.stderr[-2000:]
+    return done.stdout.strip()
+
+
 def test_import_contracts_hold():
     script = ("import sys; from importlinter.cli import lint_imports; "
               "sys.exit(lint_imports(no_cache=True))")
-    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
-                          timeout=120, cwd=ROOT)
-    assert done.returncode == 0, done.stdout[-3000:] + done.stderr[-2000:]
-    assert "0 broken" in done.stdout
+    assert "0 broken" in fresh_python(script, cwd=ROOT)
 
 
 def test_importing_every_module_keeps_the_matplotlib_backend():
@@ -29,10 +35,7 @@ def test_importing_every_module_keeps_the_matplotlib_backend():
     script = ("import matplotlib; matplotlib.use('svg'); import importlib\n"
               f"for name in {modules!r}: importlib.import_module(name)\n"
               "print(matplotlib.get_backend())")
-    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
-                          timeout=120)
-    assert done.returncode == 0, done.stderr
-    assert done.stdout.strip() == "svg"
+    assert fresh_python(script) == "svg"
     assert len(modules) > 30  # the walk found the package, not an empty path
 
 
@@ -41,9 +44,17 @@ def test_the_top_level_api_is_lazy_and_complete():
               "assert 'exudyn' not in sys.modules, 'import exubrush loaded Exudyn'\n"
               "for name in exubrush.__all__: getattr(exubrush, name)\n"
               "print(exubrush.__version__)")
-    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
-                          timeout=120)
-    assert done.returncode == 0, done.stderr
     from importlib.metadata import version
 
-    assert done.stdout.strip() == version("exubrush")
+    assert fresh_python(script) == version("exubrush")
+
+
+def test_a_built_in_case_is_read_and_shown_without_pint_or_scipy():
+    """`exubrush case` and a run's start read built-in cases: pint's and SciPy's imports
+    (about a second) are for unit texts and solvers they do not use."""
+    script = ("import sys\n"
+              "from exubrush.parameters.io import load_case\n"
+              "from exubrush.parameters.fields import to_toml\n"
+              "to_toml(load_case('orthogonal', ['motion.periods=1']))\n"
+              "print(sorted({'pint', 'scipy'} & set(sys.modules)))")
+    assert fresh_python(script) == "[]"
