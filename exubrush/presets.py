@@ -4,7 +4,8 @@ Each preset is a list of parameter overrides applied before the user's own ``--s
 overrides. The errors and times quoted are those of
 ``python validation/benchmarks/benchmark.py`` on the default 48-bristle head, orthogonal
 case (approach plus one period), against DFM N = 24 at 0.25 ms, on a 2-core machine; the
-tables in validation/benchmarks/README.md have them all. ``balanced`` is what the case defaults are.
+table in validation/benchmarks/README.md has today's figures, docs/decisions/0002 and the
+records after it how each setting was chosen. ``balanced`` is what the case defaults are.
 """
 
 from __future__ import annotations

@@ -7,7 +7,7 @@ and their derivatives back. Exudyn calls the group's force function at every New
 iteration and its Jacobian function at every Jacobian update, a few dozen touching pairs
 each time: array code paid numpy's per-call overhead dozens of times per pair (0.5 ms a
 force call, 2-3 ms a Jacobian call on a 7-filament tuft), scalar compiled code pays it
-once per call (validation/benchmarks/README.md, "Tufts and contact between bristles").
+once per call (docs/decisions/0011).
 
 ``error_model="numpy"``: a division by zero gives inf or nan as numpy's would (a segment of
 zero length, never built), not an exception inside Exudyn's call.
@@ -36,7 +36,7 @@ SOFT_DEPTH = 0.01
 # soft depth put 41 % of a light tip-to-tip contact at the far end of the stretch, where
 # the filaments did not touch (a contact force 5 % above beam theory's); plus 1e-4 of it
 # fixed that but made the shares of barely touching filaments swing, and a 7-filament tuft
-# took twice the Jacobians (validation/benchmarks/README.md)
+# took twice the Jacobians (docs/decisions/0011, third session)
 SHARE_SCALE = 0.1
 # a crossing contact near a joint of a chain belongs to whichever of the two segments that
 # meet there is closer to the other bristle, shared smoothly where their distances differ

@@ -6,9 +6,8 @@ scalar code, and the generalized forces it puts on a tip node with Euler paramet
 with their derivatives: so that an Exudyn ``ObjectGenericODE2`` (contact.backend
 "paper-compiled", exubrush.contact.exudyn_contact) computes the contact and its Jacobian
 instead of Exudyn evaluating and differentiating the symbolic law, which on a tooth row
-cost 395 µs a Jacobian and 20 µs a residual (validation/benchmarks/README.md, "What a
-Python user function of ObjectGenericODE2 costs"). tests/unit/test_surface_kernel.py
-checks the law against the generic one at random states.
+cost 395 µs a Jacobian and 20 µs a residual (docs/decisions/0018).
+tests/unit/test_surface_kernel.py checks the law against the generic one at random states.
 """
 
 from __future__ import annotations

@@ -46,7 +46,7 @@ LOCAL_WORKERS_PER_CORE = 4  # most processes of a local cluster per core
 IN_FLIGHT = 3  # tasks per worker thread handed to the scheduler at a time (one runs, two wait)
 # A worker solves in a thread beside its event loop; what wakes that loop takes the GIL from
 # the solve, which calls Python every step. These make a local worker's solves 7-10 % faster
-# (validation/benchmarks/README.md, "Sweeps on Dask"); workers of another cluster take them
+# (docs/decisions/0006); workers of another cluster take them
 # from their environment (docs/sweeps.md).
 QUIET_WORKERS = {
     "distributed.admin.tick.interval": "1s",  # the event loop's watchdog, 20 ms by default

@@ -1,6 +1,6 @@
 """Where each bristle of a head sits and how it is oriented (pure, mm units).
 
-Symmetry breaking (docs/model.md; measured in validation/benchmarks/README.md): a perfectly
+Symmetry breaking (docs/model.md; measured in docs/decisions/0004): a perfectly
 straight, perfectly aligned bristle pressed onto a plane cannot choose a side to escape to
 at a stroke reversal, and the solver jams. Each root is therefore tilted by
 ``Head.root_tilt`` (default 0.5°) about a horizontal axis whose direction is drawn from a

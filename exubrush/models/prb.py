@@ -20,8 +20,7 @@ What holds the sliding link's axis on the pivot (``model.prb_pivot``):
   :data:`PIVOT_STIFFNESS_FACTOR` times the bristle's axial stiffness EA/l, whose force
   acts on the link where the link passes the pivot (a penalty form of the joint);
 - ``"joint"``: Exudyn's generic joint (a constraint): exact, but Newton took 3.8 iterations
-  a step against 2.1 with the spring (validation/benchmarks/README.md, "PRB's pivot as a
-  spring").
+  a step against 2.1 with the spring (docs/decisions/0017).
 """
 
 from __future__ import annotations
@@ -49,7 +48,7 @@ from exubrush.parameters.case import Material
 # lateral stiffness of the pivot spring over the bristle's axial stiffness EA/l: on four
 # bristles of the default head (1.5 periods) the mean flat-zone force lay 0.02 % from the
 # joint's with 10, 0.003 % with 100 (which took 10 % longer: Newton iterates more against a
-# stiffer spring), 0.25 % with 1 (validation/benchmarks/README.md, "PRB's pivot as a spring")
+# stiffer spring), 0.25 % with 1 (docs/decisions/0017)
 PIVOT_STIFFNESS_FACTOR = 10.0
 
 
@@ -148,7 +147,7 @@ def _add_pivot_spring(mbs, pivot_on_link, pivot_on_handle, bristle, material):
     on the link at its point on the pivot, as the joint's reaction does, and the spring
     converges to the joint as k grows (without the torque the mean force moved by 0.4-0.85
     %; with v instead of w the damping braked the link's rotation by c s², soon more than
-    its torsional damper: validation/benchmarks/README.md)."""
+    its torsional damper: docs/decisions/0017)."""
     stiffness = PIVOT_STIFFNESS_FACTOR * axial_spring_constants(bristle, material)[0]
     damping = material.damping_time * stiffness
 

@@ -409,8 +409,8 @@ class Model(Parameters):
     def node_rotation(self) -> str:
         """The rotation coordinates the bodies get, ``rotation`` with "auto" resolved: a PRB
         link on Euler parameters took 3.5-5.2 Newton iterations a step and 5.5 times the
-        Jacobians, on a rotation vector 2.6-3.8 (validation/benchmarks/README.md, "PRB on
-        rotation vectors"); DFM chains are faster on Euler parameters."""
+        Jacobians, on a rotation vector 2.6-3.8 (docs/decisions/0015); DFM chains are faster on
+        Euler parameters."""
         if self.rotation != "auto":
             return self.rotation
         return "rotation-vector" if self.kind == "prb" else "euler-parameters"
@@ -456,7 +456,8 @@ class Solver(Parameters):
     """Exudyn implicit solver settings (generalized-alpha with automatic step reduction).
 
     The defaults are the ``balanced`` preset (exubrush.presets); why each is what it is,
-    with measurements, is in validation/benchmarks/README.md.
+    with measurements, is in the decision records docs/decisions/ (index in
+    validation/benchmarks/README.md).
     """
 
     RENAMED = {
@@ -489,8 +490,7 @@ class Solver(Parameters):
     step_cut: float = param(
         0.25, "factor by which a step is cut after Newton fails (Exudyn's "
               "adaptiveStepDecrease; Exudyn's default 0.5): a snapping tip's microsecond "
-              "steps are reached in fewer failed tries (validation/benchmarks/README.md, "
-              "'Snaps: a step cut by 4 and held for 4 steps')",
+              "steps are reached in fewer failed tries (docs/decisions/0016)",
         above=0.0, below=1.0,
     )
     minimum_step_size: float = param(1e-9, "smallest step of the automatic step reduction",
@@ -521,11 +521,10 @@ class Solver(Parameters):
              "less than this factor (Exudyn's modifiedNewtonContractivity); 1 made the "
              "interdental case 9 % faster, but moved the head's mean force by 0.34 % and "
              "single bristles' by up to 1.4 % "
-             "(validation/benchmarks/README.md, 'Tooth rows: the drop hook and Newton's "
-             "contractivity')",
+             "(docs/decisions/0018)",
         above=0.0, below=10.0,
     )
-    # below 10, one-bristle solves failed at a reversal (validation/benchmarks/README.md)
+    # below 10, one-bristle solves failed at a reversal (docs/decisions/0002, 0007)
     newton_iterations: int = param(
         12, "Newton iterations before a step is given up and cut", minimum=10,
     )

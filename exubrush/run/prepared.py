@@ -245,7 +245,7 @@ def unreachable_tufts(case: Case, bristles, reaching: tuple[bool, ...]) -> list[
 
 def coupled_warning(case: Case, groups) -> list[str]:
     """What contact between bristles will cost: the size of the largest system, and the
-    measured time of a small one (validation/benchmarks/README.md)."""
+    measured time of a small one (docs/decisions/0001, "Whole runs")."""
     largest = max((len(g) for g in groups), default=0)
     if not case.contact.between_bristles or largest < 2:
         return []

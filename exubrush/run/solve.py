@@ -135,7 +135,7 @@ def solve_group(prepared: PreparedCase, selection: tuple[int, ...],
     overlaps = touching.overlaps if touching is not None else []
     # Exudyn keeps a system container alive after its last Python reference is gone: without
     # this, a worker's memory grew by the stored sensor data of every group it solved
-    # (0.9 MB per default bristle and 2 periods, validation/benchmarks/README.md)
+    # (0.9 MB per default bristle and 2 periods, docs/decisions/0008)
     scene.system_container.Reset()
     n = min(len(h) for h in [*drive, *(h for nodes in histories for h in nodes),
                              *(rows for rows, _ in contact_rows)])

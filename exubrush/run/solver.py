@@ -22,7 +22,7 @@ def dynamic_settings(solver: Solver, end_time: float, output_interval: float,
                      touching: bool = False, force_tolerance: float = 0.0):
     """Implicit generalized-α settings for a brushing run.
 
-    Choices (each measured on this problem, validation/benchmarks/README.md): spectral
+    Choices (each measured on this problem, docs/decisions/0002 and 0016): spectral
     radius 0 by default,
     modified Newton, automatic step reduction down to ``minimum_step_size`` (snap-through
     at stroke reversals needs tiny steps), a failed step cut by ``step_cut`` (0.25) and
@@ -43,7 +43,7 @@ def dynamic_settings(solver: Solver, end_time: float, output_interval: float,
     (touching filaments leave a residual floor near 1e-5 of a step's initial residual that
     Newton could not pass at any step size). On a 7-filament tuft, approach and 0.1 period,
     the two together: 37-39 s -> 7.6 s (seed 1), 28-74 s -> 19 s (seed 2); each alone
-    gained little or nothing (validation/benchmarks/README.md).
+    gained little or nothing (docs/decisions/0011).
     ``force_tolerance`` [N]: Newton also accepts a step whose residual is below it
     (:meth:`exubrush.run.prepared.PreparedCase.newton_force_tolerance`; docs/model.md, "Newton's
     tolerance"); Exudyn's absolute tolerance is the larger of it and

@@ -4,7 +4,7 @@ Exudyn ships two builds of its core: ``exudynCPP``, which checks the range of ev
 and matrix index, and ``exudynCPPfast``, without those checks and built for AVX2. A process
 picks one when it first imports ``exudyn``, from ``sys.exudynFast``. The fast build solves
 exubrush's bristles 13-17 % faster with the same flat-zone forces (within their rounding and
-the stick-slip that follows; measurements in validation/benchmarks/README.md).
+the stick-slip that follows; measured in docs/decisions/0007).
 
 ``import exubrush`` asks for the fast build in every process that imports it before
 ``exudyn`` (the command line, its worker processes, Dask workers), unless

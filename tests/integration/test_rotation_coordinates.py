@@ -47,7 +47,7 @@ def test_rotation_vector_nodes_give_the_same_forces(model):
                                               ("prb", "RigidBodyRotVecLG")])
 def test_auto_rotation_gives_each_model_its_faster_node(model, node_type):
     # DFM is faster on Euler parameters, PRB's link on a rotation vector
-    # (validation/benchmarks/README.md, "PRB on rotation vectors")
+    # (docs/decisions/0015)
     case = load_case("orthogonal", ["head.rows=1", "head.columns=1", f"model.kind='{model}'"])
     assert case.model.rotation == "auto"
     scene = build_scene(prepare(case), (0,))

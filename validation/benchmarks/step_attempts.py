@@ -13,7 +13,7 @@ stroke the Jacobians go, by the attempts' start times). With ``--watch T0 T1`` i
 prints, for every Newton iteration of the attempts that end between T0 and T1 [s], the
 residual of the iteration before and the tip's penetration [mm], normal speed [mm/s] and
 slip [mm/s] on each surface feature it touches (analytic surfaces, the paper's law).
-validation/benchmarks/README.md, "Where a snap's Jacobians go".
+What it found: docs/decisions/0021.
 """
 
 from __future__ import annotations
