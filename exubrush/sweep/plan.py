@@ -26,7 +26,8 @@ from typing import Any
 
 import numpy as np
 
-from exubrush.parameters.case import BUILT_IN_CASES, Case
+from exubrush.parameters.case import Case
+from exubrush.parameters.catalogue import BUILT_IN_CASES
 from exubrush.parameters.fields import ParameterError, describe_key, to_plain
 from exubrush.parameters.io import load_case, read_toml
 from exubrush.util.units import UnitError, registry, to_internal
