@@ -231,10 +231,11 @@ class Head(Parameters):
             return
         centres = [(tuft.x, tuft.y) for tuft in self.tufts]
         radii = [0.5 * tuft.diameter for tuft in self.tufts]
-        # candidate pairs from a k-d tree (a head may have thousands of tufts), then exact
-        from scipy.spatial import cKDTree  # 0.4 s of import: only where tufts are read
+        # candidate pairs from a k-d tree (a head may have thousands of tufts), then exact;
+        # NumPy and SciPy are imported only where tufts are read
+        from exubrush.util.pair_search import pairs_within
 
-        for i, j in sorted(cKDTree(centres).query_pairs(2.0 * max(radii))):
+        for i, j in pairs_within(centres, 2.0 * max(radii)).tolist():
             gap = math.dist(centres[i], centres[j]) - radii[i] - radii[j]
             if gap < 0.0:
                 raise ValueError(
