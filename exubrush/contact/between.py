@@ -29,7 +29,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.spatial import cKDTree
 
 from exubrush.contact.between_kernel import (  # noqa: F401  (the law's constants)
     JOINT_TIE,
@@ -39,6 +38,7 @@ from exubrush.contact.between_kernel import (  # noqa: F401  (the law's constant
     segments_contact,
 )
 from exubrush.parameters.case import BristleContactLaw
+from exubrush.util.pair_search import pairs_within
 
 
 def law_vector(law: BristleContactLaw) -> np.ndarray:
@@ -129,7 +129,7 @@ def candidate_pairs(chains: Chains, points: np.ndarray, margin: float = 0.0) -> 
     a, b = points[chains.starts], points[chains.ends]
     centre = 0.5 * (a + b)
     bound = 0.5 * np.linalg.norm(b - a, axis=1) + chains.radius
-    pairs = cKDTree(centre).query_pairs(2.0 * bound.max() + margin, output_type="ndarray")
+    pairs = pairs_within(centre, 2.0 * bound.max() + margin)
     if not len(pairs):
         return np.zeros((0, 2), int)
     i, j = pairs[:, 0], pairs[:, 1]

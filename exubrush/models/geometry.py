@@ -19,6 +19,7 @@ from numpy.typing import ArrayLike
 from exubrush.models.packing import PackingError, filament_offsets
 from exubrush.models.sections import SectionProperties, section_properties
 from exubrush.parameters.case import BristleEntry, Head, Material
+from exubrush.util.pair_search import pairs_within
 
 # bristle frame (x root->tip, y along the head, z = x × y) in the head frame, untilted
 UPRIGHT_FRAME = np.array([[0.0, 1.0, 0.0], [0.0, 0.0, -1.0], [-1.0, 0.0, 0.0]])
@@ -98,11 +99,10 @@ def touching_groups(bristles: list[BristleGeometry]) -> tuple[tuple[int, ...], .
     indices ascend; groups are ordered by their first index."""
     from scipy.sparse import coo_matrix
     from scipy.sparse.csgraph import connected_components
-    from scipy.spatial import cKDTree
 
     roots = np.array([b.root for b in bristles])
     reach = np.array([b.length + b.outer_radius for b in bristles])
-    pairs = np.array(sorted(cKDTree(roots).query_pairs(2.0 * reach.max())), dtype=int)
+    pairs = pairs_within(roots, 2.0 * reach.max())
     if len(pairs):
         gaps = np.linalg.norm(roots[pairs[:, 0]] - roots[pairs[:, 1]], axis=1)
         pairs = pairs[gaps < reach[pairs[:, 0]] + reach[pairs[:, 1]]]

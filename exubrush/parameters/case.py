@@ -9,6 +9,7 @@ width) and z = x × y (the section height, across the head).
 Defaults are the paper's silicone brush (E, tip radius, d, contact law) and, where the
 paper is silent, exubrush's documented choices (layout, section, length, ν, ρ, damping,
 perturbation, approach): see docs/model.md, "Default head".
+The built-in cases made from these sections are in :mod:`exubrush.parameters.catalogue`.
 
 Every section derives from :class:`~exubrush.parameters.fields.Parameters`, so
 ``case.replace(...)`` and ``case.solver.replace(...)`` give validated copies.
@@ -17,9 +18,9 @@ Every section derives from :class:`~exubrush.parameters.fields.Parameters`, so
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
-from exubrush.parameters.fields import Parameters, build, param
+from exubrush.parameters.fields import Parameters, param
 from exubrush.parameters.surface_kinds import SURFACE_KINDS
 
 CONTACT_BACKENDS = ("paper-symbolic", "paper-python", "paper-compiled", "exudyn-builtin")
@@ -230,10 +231,11 @@ class Head(Parameters):
             return
         centres = [(tuft.x, tuft.y) for tuft in self.tufts]
         radii = [0.5 * tuft.diameter for tuft in self.tufts]
-        # candidate pairs from a k-d tree (a head may have thousands of tufts), then exact
-        from scipy.spatial import cKDTree  # 0.4 s of import: only where tufts are read
+        # candidate pairs from a k-d tree (a head may have thousands of tufts), then exact;
+        # NumPy and SciPy are imported only where tufts are read
+        from exubrush.util.pair_search import pairs_within
 
-        for i, j in sorted(cKDTree(centres).query_pairs(2.0 * max(radii))):
+        for i, j in pairs_within(centres, 2.0 * max(radii)).tolist():
             gap = math.dist(centres[i], centres[j]) - radii[i] - radii[j]
             if gap < 0.0:
                 raise ValueError(
@@ -671,78 +673,3 @@ class Case(Parameters):
         if blended and self.motion.hold_duration <= 0.0:
             raise ValueError("motion.approach_friction off (or auto with PRB) blends friction "
                              "in during the hold: set motion.hold_duration > 0")
-
-
-def orthogonal_case() -> Case:
-    """The paper's orthogonal brushing: x(t) = 15 mm sin(πt/6) across the head's long axis."""
-    return build(Case, {})
-
-
-def parallel_case() -> Case:
-    """The paper's parallel brushing: x(t) = 30 mm sin(πt/12) along the head's long axis."""
-    base = orthogonal_case()
-    return replace(
-        base,
-        name="parallel",
-        motion=replace(base.motion, direction="parallel", amplitude=30.0, period=24.0),
-    )
-
-
-def interdental_case() -> Case:
-    """The default head in the orthogonal motion across a row of teeth: 7 mm crowns, 1 mm
-    interdental gaps 2 mm deep, top edges rounded with 0.5 mm, the gaps along the head's
-    long axis (surface.yaw = 90°) so that the slide crosses them; at the paper's
-    d = 4.2 mm a straight tip reaches 1.2 mm below the tooth tops, into a gap. The tip
-    contact is the compiled law (contact.backend "paper-compiled": 2.2x faster than the
-    symbolic one here, the head's mean force within 0.02 %)."""
-    base = orthogonal_case()
-    return replace(base, name="interdental",
-                   surface=Surface(kind="tooth-row", yaw=math.radians(90.0)),
-                   contact=replace(base.contact, backend="paper-compiled"))
-
-
-def crown_case() -> Case:
-    """The default head in the orthogonal motion along a cylinder of 4 mm radius (a tooth
-    crown) whose axis lies along the slide; the tip contact the compiled law, as for the
-    interdental case."""
-    base = orthogonal_case()
-    return replace(base, name="crown", surface=Surface(kind="cylinder", radius=4.0),
-                   contact=replace(base.contact, backend="paper-compiled"))
-
-
-def tuft_case() -> Case:
-    """One tuft of 37 round nylon filaments (0.2 mm, 10.5 mm trim length, hexagonal in a
-    1.6 mm hole) in the orthogonal motion, at d = 8.4 mm: 2.1 mm of interference, a fifth of
-    the filaments' reach, so that they bend well beyond the linear range."""
-    base = orthogonal_case()
-    return replace(base, name="tuft",
-                   head=replace(base.head, layout="tufts", tufts=(Tuft(name="tuft"),)),
-                   motion=replace(base.motion, interaction_distance=8.4))
-
-
-# a typical manual toothbrush (docs/tufts.md, "The manual-brush case", gives the sources):
-# 4 rows of 10 tufts, each the `tuft` case's 37 nylon filaments of 0.2 mm in a 1.6 mm hole
-MANUAL_BRUSH_ROWS, MANUAL_BRUSH_COLUMNS = 4, 10
-MANUAL_BRUSH_PITCH = (2.4, 2.3)  # mm, along and across the head (holes 0.8 / 0.7 mm apart)
-
-
-def manual_brush_case() -> Case:
-    """A typical full manual toothbrush head: 40 tufts (4 rows of 10) of 37 round nylon
-    filaments each (0.2 mm, 10.5 mm trim length, hexagonal in 1.6 mm holes on a 2.4 x 2.3
-    mm pitch), 1,480 filaments, in the orthogonal motion at d = 8.4 mm (the `tuft` case's
-    interference) for one slide period. Contact between bristles stays off: every tuft
-    reaches its neighbours, so with it the whole head is one system (docs/tufts.md)."""
-    base = tuft_case()
-    along, across = MANUAL_BRUSH_PITCH
-    tufts = tuple(
-        Tuft(name=f"r{row + 1}c{column + 1}",
-             x=(column - (MANUAL_BRUSH_COLUMNS - 1) / 2) * along,
-             y=(row - (MANUAL_BRUSH_ROWS - 1) / 2) * across)
-        for row in range(MANUAL_BRUSH_ROWS) for column in range(MANUAL_BRUSH_COLUMNS))
-    return replace(base, name="manual-brush", head=replace(base.head, tufts=tufts),
-                   motion=replace(base.motion, periods=1.0))
-
-
-BUILT_IN_CASES = {"orthogonal": orthogonal_case, "parallel": parallel_case,
-                  "interdental": interdental_case, "crown": crown_case, "tuft": tuft_case,
-                  "manual-brush": manual_brush_case}

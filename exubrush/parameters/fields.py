@@ -46,7 +46,9 @@ def param(
     Parameters
     ----------
     default : value
-        Default, in the internal unit ``unit``.
+        Default, in the internal unit ``unit``. A field annotated ``tuple[E, ...]`` with E
+        a number or text is a list of values (a tuple default), each checked against
+        ``unit``, the range and ``choices``.
     doc : str
         One-line description shown in case files.
     unit : str
@@ -89,6 +91,14 @@ def _nested_entry_type(annotation: Any) -> type | None:
         args = typing.get_args(annotation)
         if args:
             return _section_class(args[0])
+    return None
+
+
+def _list_item_type(annotation: Any) -> Any:
+    """Return E for ``tuple[E, ...]`` with E a scalar (a list of values, each checked like
+    a scalar parameter of the field's unit and range), else None."""
+    if typing.get_origin(annotation) is tuple and _nested_entry_type(annotation) is None:
+        return typing.get_args(annotation)[0]
     return None
 
 
@@ -186,8 +196,19 @@ def build(cls: type, data: dict | None, prefix: str = "") -> Any:
                 build(entry_type, item, f"{key}[{i}].") for i, item in enumerate(raw)
             )
         elif f.name in data:
-            values[f.name] = _read_scalar(key, data[f.name], f.metadata, annotation)
+            values[f.name] = _read_value(key, data[f.name], f.metadata, annotation)
     return _checked(cls(**values), prefix.rstrip(".") or "case")
+
+
+def _read_value(key: str, value: Any, meta: Mapping[str, Any], annotation: Any) -> Any:
+    """A scalar, or a list of them read item by item (``key[i]`` in messages)."""
+    item_type = _list_item_type(annotation)
+    if item_type is None:
+        return _read_scalar(key, value, meta, annotation)
+    if not isinstance(value, list):
+        raise ParameterError(f"{key}: expected a list [...], got {value!r}")
+    return tuple(_read_scalar(f"{key}[{i}]", item, meta, item_type)
+                 for i, item in enumerate(value))
 
 
 def _checked(instance: Any, label: str) -> Any:
@@ -217,6 +238,8 @@ def dotted_keys(cls: type, prefix: str = "") -> list[str]:
 
 
 def _display_value(value: Any, meta: Mapping[str, Any]) -> Any:
+    if isinstance(value, tuple):
+        return [_display_value(item, meta) for item in value]
     if meta["unit"] in ("1", "text") or isinstance(value, int) and meta["unit"] == "1":
         return value
     display = meta["display"]
@@ -378,6 +401,12 @@ def _check_value(key: str, value: Any, meta: Mapping[str, Any], annotation: Any)
                 isinstance(item, wanted) for item in items):
             shape = wanted.__name__ if entry_type is None else f"a tuple of {wanted.__name__}"
             raise ParameterError(f"{key}: expected {shape}, got {value!r}")
+        return
+    if _list_item_type(annotation) is not None:
+        if not isinstance(value, tuple):
+            raise ParameterError(f"{key}: expected a tuple, got {value!r}")
+        for i, item in enumerate(value):
+            _check_value(f"{key}[{i}]", item, meta, _list_item_type(annotation))
         return
     if annotation in (bool, int) or meta["unit"] == "text":  # no unit to read: same path
         _read_scalar(key, value, meta, annotation)

@@ -11,7 +11,8 @@ import tomllib
 from dataclasses import replace
 from pathlib import Path
 
-from exubrush.parameters.case import BUILT_IN_CASES, Case
+from exubrush.parameters.case import Case
+from exubrush.parameters.catalogue import BUILT_IN_CASES
 from exubrush.parameters.fields import (
     ParameterError,
     apply_override,

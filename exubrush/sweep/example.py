@@ -1,18 +1,20 @@
-"""The commented sweep file ``exubrush sweep --example`` prints."""
+"""The commented sweep file ``exubrush sweep --example`` prints.
 
-EXAMPLE = '''\
+Its [sweep] and [execution] tables are written from their parameter dataclasses
+(exubrush.sweep.settings) the way ``exubrush case`` writes a case, so every key carries its
+help text and unit; what varies ([grid], [sample]) is written out here.
+"""
+
+from exubrush.parameters.fields import to_toml
+from exubrush.sweep.settings import Execution, SweepSettings
+
+HEADER = """\
 # exubrush sweep file: one base case, what varies, where the runs are solved.
 # Run it with:  exubrush sweep THIS_FILE.toml [--out DIR] [--scheduler tcp://HOST:8786]
 # Every run is an ordinary run folder under the sweep folder; summary.csv tabulates them.
+"""
 
-[sweep]
-name = "length-and-distance"   # names the sweep folder (default: the file's name)
-base = "orthogonal"            # a built-in case (orthogonal, parallel) or a TOML case file,
-                               # relative to this file
-set = ["motion.periods=2"]     # --set overrides applied to every run
-seeds = [1]                    # repeat every run once per head.seed (root-tilt directions)
-max_runs = 100                 # refuse a sweep that expands to more runs than this
-
+VARIED = """
 # [grid]: every combination of these values is run (here 2 x 3 = 6 runs).
 # A value carries its unit wherever the parameter has one ('exubrush case orthogonal'
 # lists every parameter with its unit).
@@ -33,8 +35,10 @@ max_runs = 100                 # refuse a sweep that expands to more runs than t
 # "head.material.youngs_modulus" = { from = "5 MPa", to = "20 MPa", scale = "log" }
 
 # [execution]: where the runs are solved (the command line's --scheduler and --workers win).
-[execution]
-scheduler = "local"            # a Dask cluster on this machine, or tcp://HOST:PORT
-# workers = 2                  # local cluster processes (default: every core)
-timeout = "10 s"               # to reach a scheduler
-'''
+"""
+
+EXAMPLE_SWEEP = SweepSettings(name="length-and-distance", base="orthogonal",
+                              set=("motion.periods=2",), seeds=(1,), max_runs=100)
+
+EXAMPLE = (f"{HEADER}\n[sweep]\n{to_toml(EXAMPLE_SWEEP)}{VARIED}[execution]\n"
+           f"{to_toml(Execution())}")

@@ -7,9 +7,10 @@ A sweep file is TOML (``exubrush sweep --example`` prints a commented one)::
     [sample]           count, seed and [sample.ranges]: a Latin hypercube, crossed with the grid
     [execution]        scheduler ("local" or tcp://HOST:PORT), workers, timeout
 
-Every value is checked here, before anything is written: each run's case is built and
-validated like a case file, and a fault ends in one line that names the sweep file, the key
-and what to write instead.
+Every value is checked here, before anything is written: [sweep] and [execution] are
+parameter tables (exubrush.sweep.settings) read like a case file's sections, each run's case
+is built and validated like a case file, and a fault ends in one line that names the sweep
+file, the key and what to write instead.
 """
 
 from __future__ import annotations
@@ -26,22 +27,21 @@ from typing import Any
 
 import numpy as np
 
-from exubrush.parameters.case import BUILT_IN_CASES, Case
-from exubrush.parameters.fields import ParameterError, describe_key, to_plain
+from exubrush.parameters.case import Case
+from exubrush.parameters.catalogue import BUILT_IN_CASES
+from exubrush.parameters.fields import ParameterError, build, describe_key, to_plain
 from exubrush.parameters.io import load_case, read_toml
+from exubrush.sweep.settings import Execution, SweepSettings
 from exubrush.util.units import UnitError, registry, to_internal
 
 SECTIONS = {
-    "sweep": ("name", "base", "set", "seeds", "max_runs"),
+    "sweep": SweepSettings,
     "grid": None,  # any parameter key
     "sample": ("count", "seed", "ranges"),
-    "execution": ("scheduler", "workers", "timeout"),
+    "execution": Execution,
 }
 RANGE_KEYS = ("from", "to", "count", "scale")
 SCALES = ("linear", "log")
-MAX_RUNS = 1000  # default bound on the runs of one sweep (sweep.max_runs raises it)
-DEFAULT_TIMEOUT = 10.0  # s to reach a scheduler
-MAX_TIMEOUT = 600.0  # s: a longer wait for a scheduler is a hang, not a setting
 NAME_VALUE_DIGITS = 4  # significant digits of a value in a run's folder name
 
 
@@ -79,17 +79,6 @@ class SweepRun:
 
 
 @dataclass(frozen=True)
-class Execution:
-    """Where the runs are solved: ``scheduler`` "local" (a Dask cluster on this machine
-    with ``workers`` processes, default: every core) or a scheduler address; ``timeout``
-    [s] to reach it."""
-
-    scheduler: str = "local"
-    workers: int | None = None
-    timeout: float = DEFAULT_TIMEOUT
-
-
-@dataclass(frozen=True)
 class SweepPlan:
     """A sweep file read and expanded into its runs."""
 
@@ -118,17 +107,17 @@ def read_sweep(path: str | Path) -> SweepPlan:
         if not isinstance(value, dict):
             raise SweepError(f"{where}: {section} must be a table [{section}]")
         allowed = SECTIONS[section]
-        if allowed is None:
-            continue
-        unknown = [key for key in value if key not in allowed]
-        if unknown:
-            raise SweepError(f"{where}: [{section}] {unknown[0]}: unknown key; known keys: "
-                             f"{', '.join(allowed)}")
-    sweep = data.get("sweep", {})
-    base = _base_case(sweep, path)
-    common = _string_list(sweep.get("set", []), f"{where}: sweep.set")
-    seeds = _seeds(sweep, where)
-    limit = _whole(sweep.get("max_runs", MAX_RUNS), f"{where}: sweep.max_runs", minimum=1)
+        if isinstance(allowed, tuple):
+            unknown = [key for key in value if key not in allowed]
+            if unknown:
+                raise SweepError(f"{where}: [{section}] {unknown[0]}: unknown key; known "
+                                 f"keys: {', '.join(allowed)}")
+    settings = _table(SweepSettings, data, "sweep", where)
+    execution = _table(Execution, data, "execution", where)
+    base = _base_case(settings, path)
+    common = list(settings.set)
+    seeds = _seeds(settings, "seeds" in data.get("sweep", {}), where)
+    limit = settings.max_runs
     grid = data.get("grid", {})
     sample = data.get("sample")
     if not grid and sample is None and seeds is None:
@@ -152,28 +141,25 @@ def read_sweep(path: str | Path) -> SweepPlan:
                     for combo in itertools.product(*(group.values for group in varied))]
     runs = tuple(_run(number, values, base, common, where)
                  for number, values in enumerate(combinations))
-    name = sweep.get("name", path.stem)
-    if not isinstance(name, str) or not name.strip():
-        raise SweepError(f"{where}: sweep.name must be non-empty text")
-    return SweepPlan(name, path, swept, runs, _execution(data.get("execution", {}), where))
+    return SweepPlan(settings.name or path.stem, path, swept, runs, execution)
 
 
-def _base_case(sweep: dict, path: Path) -> str:
+def _table(cls: type, data: dict, section: str, where: str) -> Any:
+    """The [section] table read into the parameter dataclass ``cls`` (defaults if absent)."""
+    try:
+        return build(cls, data.get(section, {}), f"{section}.")
+    except ParameterError as err:
+        raise SweepError(f"{where}: {err}") from None
+
+
+def _base_case(settings: SweepSettings, path: Path) -> str:
     """The base case: a built-in name, or a case file relative to the sweep file."""
-    base = sweep.get("base")
-    if not isinstance(base, str) or not base:
+    if not settings.base:
         raise SweepError(f"{path.name}: sweep.base is missing: name a built-in case "
                          f"({', '.join(BUILT_IN_CASES)}) or a TOML case file")
-    if base in BUILT_IN_CASES:
-        return base
-    return str(path.parent / base)
-
-
-def _string_list(value: Any, where: str) -> list[str]:
-    if not isinstance(value, list) or not all(isinstance(item, str) for item in value):
-        raise SweepError(f"{where}: expected a list of KEY=VALUE texts, e.g. "
-                         "[\"motion.periods=1\"]")
-    return value
+    if settings.base in BUILT_IN_CASES:
+        return settings.base
+    return str(path.parent / settings.base)
 
 
 def _whole(value: Any, where: str, minimum: int) -> int:
@@ -190,18 +176,14 @@ def _at_most(count: int, limit: int, where: str) -> int:
     return count
 
 
-def _seeds(sweep: dict, where: str) -> list[int] | None:
-    if "seeds" not in sweep:
+def _seeds(settings: SweepSettings, given: bool, where: str) -> tuple[int, ...] | None:
+    """The seeds to repeat every run with; None if sweep.seeds is left out."""
+    if not given:
         return None
-    seeds = sweep["seeds"]
-    if not isinstance(seeds, list) or not seeds:
+    if not settings.seeds:
         raise SweepError(f"{where}: sweep.seeds must be a non-empty list of whole numbers, "
                          "e.g. [1, 2, 3]")
-    for seed in seeds:
-        _whole(seed, f"{where}: sweep.seeds", minimum=0)
-    if len(set(seeds)) != len(seeds):
-        raise SweepError(f"{where}: sweep.seeds repeats a seed; each seed gives the same run")
-    return seeds
+    return settings.seeds
 
 
 def _parameter(key: str, where: str) -> tuple[Any, Mapping[str, Any]]:
@@ -368,22 +350,3 @@ def run_name(number: int, values: list[tuple[str, Any]]) -> str:
         parts.append(f"{key.split('.')[-1]}={shown}")
     return re.sub(r"[^A-Za-z0-9.=_-]", "_", "-".join(parts))[:120]
 
-
-def _execution(data: dict, where: str) -> Execution:
-    scheduler = data.get("scheduler", "local")
-    if not isinstance(scheduler, str) or not scheduler:
-        raise SweepError(f"{where}: execution.scheduler must be \"local\" or an address "
-                         "tcp://HOST:PORT")
-    workers = data.get("workers")
-    if workers is not None:
-        workers = _whole(workers, f"{where}: execution.workers", minimum=1)
-    timeout = DEFAULT_TIMEOUT
-    if "timeout" in data:
-        try:
-            timeout = to_internal(data["timeout"], "s")
-        except UnitError as err:
-            raise SweepError(f"{where}: execution.timeout: {err}") from None
-        if not 0.0 < timeout <= MAX_TIMEOUT:
-            raise SweepError(f"{where}: execution.timeout must be a positive time of at most "
-                             f"{MAX_TIMEOUT:g} s, e.g. \"30 s\"")
-    return Execution(scheduler, workers, timeout)

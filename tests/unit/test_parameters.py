@@ -4,7 +4,8 @@ import tomllib
 
 import pytest
 
-from exubrush.parameters.case import Case, orthogonal_case, parallel_case
+from exubrush.parameters.case import Case
+from exubrush.parameters.catalogue import orthogonal_case, parallel_case
 from exubrush.parameters.fields import build, dotted_keys, to_toml
 from exubrush.parameters.io import load_case
 

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import yaml
 
-from exubrush.parameters.case import orthogonal_case
+from exubrush.parameters.catalogue import orthogonal_case
 from exubrush.run.rundir import recorded_status, run_record
 from exubrush.util.references import (
     BRISTLE_CONTACT,

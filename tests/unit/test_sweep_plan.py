@@ -107,7 +107,13 @@ def test_the_printed_example_is_a_valid_sweep(tmp_path):
 # (sweep file text, part of the one-line message it must give)
 MALFORMED = [
     ("[grids]\n", "unknown section [grids]"),
-    ('[sweep]\nbases = "orthogonal"\n', "[sweep] bases: unknown key"),
+    ('[sweep]\nbases = "orthogonal"\n',
+     "sweep.bases: unknown key; known keys here: base, max_runs, name, seeds, set"),
+    ('[sweep]\nbase = "orthogonal"\nmax_runs = 2.5\n', "sweep.max_runs: expected a whole number"),
+    (SMALL + 'seeds = [1, "2"]\n', "sweep.seeds[1]: expected a whole number, got '2'"),
+    (SMALL + "seeds = [1, 1]\n", "seeds repeats a seed"),
+    ('[sweep]\nbase = "orthogonal"\nset = "motion.periods=1"\n', "sweep.set: expected a list"),
+    (SMALL + 'name = " "\n[grid]\n"head.seed" = [1]\n', "name must be non-empty text"),
     ("[sweep]\nset = []\n[grid]\n\"head.seed\" = [1]\n", "sweep.base is missing"),
     ('[sweep]\nbase = "no-such-case.toml"\n[grid]\n"head.seed" = [1]\n',
      "no-such-case.toml' does not exist"),
@@ -148,8 +154,14 @@ MALFORMED = [
     (SMALL + '[grid]\n"head.material.poisson_ratio" = [0.3, 0.5]\n',
      "run 1 (head.material.poisson_ratio = 0.5): head.material.poisson_ratio: 0.5 must be < 0.5"),
     (SMALL + '[grid]\n"name" = ["a", "b"]\n', "the case name is not a parameter to vary"),
-    (SMALL + '[grid]\n"head.seed" = [1]\n[execution]\nworkers = 0\n',
-     "execution.workers: expected a whole number >= 1"),
+    (SMALL + '[grid]\n"head.seed" = [1]\n[execution]\nworkers = -1\n',
+     "execution.workers: -1 must be >= 0"),
+    (SMALL + '[grid]\n"head.seed" = [1]\n[execution]\nworkers = 1000000000000\n',
+     "execution.workers: 1000000000000 does not fit a 32-bit integer"),
+    (SMALL + '[grid]\n"head.seed" = [1]\n[execution]\nworkers = 1.5\n',
+     "execution.workers: expected a whole number, got 1.5"),
+    (SMALL + '[grid]\n"head.seed" = [1]\n[execution]\nplace = "here"\n',
+     "execution.place: unknown key; known keys here: scheduler, timeout, workers"),
     (SMALL + '[grid]\n"head.seed" = [1]\n[execution]\ntimeout = 10\n',
      "execution.timeout: 10 has no unit"),
     ("[sweep\n", "not valid TOML"),
@@ -171,7 +183,11 @@ MALFORMED = [
              '{ from = "-1e308 mm", to = "1e308 mm", count = 3 }\n',
      "from (-1e308 mm) to (1e308 mm) spans more than a number can hold"),
     (SMALL + '[grid]\n"head.seed" = [1]\n[execution]\ntimeout = "1e308 s"\n',
-     "execution.timeout must be a positive time of at most 600 s"),
+     "execution.timeout: 1e308 s is outside the magnitudes exubrush computes with"),
+    (SMALL + '[grid]\n"head.seed" = [1]\n[execution]\ntimeout = "601 s"\n',
+     "timeout 601 s is longer than 600 s a wait for a scheduler may take"),
+    (SMALL + '[grid]\n"head.seed" = [1]\n[execution]\ntimeout = "0 s"\n',
+     "execution.timeout: 0 s must be > 0 s"),
 ]
 
 
@@ -194,7 +210,7 @@ def test_malformed_sweep_is_refused_in_one_line_with_exit_2_and_nothing_written(
 SCHEDULER_FAULTS = [
     ('scheduler = "foo:8786"', [], "execution.scheduler 'foo:8786': not a scheduler address"),
     ('scheduler = "local"', ["--scheduler", "tcp://"], "--scheduler 'tcp://': not a scheduler"),
-    ("workers = 1000000000000", [], "1000000000000 local workers: at most 4 per core"),
+    ("workers = 1000000", [], "1000000 local workers: at most 4 per core"),
     # nothing listens on port 9 (discard) here: refused until the timeout
     ('scheduler = "tcp://127.0.0.1:9"\ntimeout = "1 s"', [],
      "execution.scheduler tcp://127.0.0.1:9: no scheduler answered within 1 s"),
@@ -226,3 +242,14 @@ def test_a_folder_holding_another_sweep_or_foreign_files_is_refused(tmp_path):
     done = CliRunner().invoke(main, ["sweep", str(first), "--out", str(out), "--quiet"])
     assert done.exit_code == 2 and "holds another sweep" in done.output
     assert sorted(p.name for p in out.iterdir()) == ["sweep.json"]
+
+
+def test_list_valued_settings_are_checked_item_by_item_from_python_too():
+    from exubrush.parameters.fields import ParameterError
+    from exubrush.sweep.settings import SweepSettings
+
+    assert SweepSettings().replace(seeds=(1, 2)).seeds == (1, 2)
+    with pytest.raises(ParameterError, match=r"SweepSettings.seeds\[1\]: -1 must be >= 0"):
+        SweepSettings().replace(seeds=(1, -1))
+    with pytest.raises(ParameterError, match="SweepSettings.seeds: expected a tuple"):
+        SweepSettings().replace(seeds=[1])

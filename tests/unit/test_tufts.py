@@ -7,7 +7,8 @@ import numpy as np
 import pytest
 
 from exubrush.models.geometry import head_bristles
-from exubrush.parameters.case import BUILT_IN_MATERIALS, tuft_case
+from exubrush.parameters.case import BUILT_IN_MATERIALS
+from exubrush.parameters.catalogue import tuft_case
 from exubrush.parameters.fields import ParameterError
 from exubrush.parameters.io import load_case
 from exubrush.run.prepared import prepare

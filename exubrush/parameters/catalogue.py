@@ -1,0 +1,89 @@
+"""The built-in cases: the paper's two brushings, surfaces with teeth and the tufted heads.
+
+``exubrush case NAME`` writes one as TOML and ``load_case("NAME")`` reads it; each factory
+returns a validated :class:`~exubrush.parameters.case.Case`. The sources of every number
+are in docs/model.md ("Default head") and docs/tufts.md.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+from exubrush.parameters.case import Case, Surface, Tuft
+from exubrush.parameters.fields import build
+
+
+def orthogonal_case() -> Case:
+    """The paper's orthogonal brushing: x(t) = 15 mm sin(πt/6) across the head's long axis."""
+    return build(Case, {})
+
+
+def parallel_case() -> Case:
+    """The paper's parallel brushing: x(t) = 30 mm sin(πt/12) along the head's long axis."""
+    base = orthogonal_case()
+    return replace(
+        base,
+        name="parallel",
+        motion=replace(base.motion, direction="parallel", amplitude=30.0, period=24.0),
+    )
+
+
+def interdental_case() -> Case:
+    """The default head in the orthogonal motion across a row of teeth: 7 mm crowns, 1 mm
+    interdental gaps 2 mm deep, top edges rounded with 0.5 mm, the gaps along the head's
+    long axis (surface.yaw = 90°) so that the slide crosses them; at the paper's
+    d = 4.2 mm a straight tip reaches 1.2 mm below the tooth tops, into a gap. The tip
+    contact is the compiled law (contact.backend "paper-compiled": 2.2x faster than the
+    symbolic one here, the head's mean force within 0.02 %)."""
+    base = orthogonal_case()
+    return replace(base, name="interdental",
+                   surface=Surface(kind="tooth-row", yaw=math.radians(90.0)),
+                   contact=replace(base.contact, backend="paper-compiled"))
+
+
+def crown_case() -> Case:
+    """The default head in the orthogonal motion along a cylinder of 4 mm radius (a tooth
+    crown) whose axis lies along the slide; the tip contact the compiled law, as for the
+    interdental case."""
+    base = orthogonal_case()
+    return replace(base, name="crown", surface=Surface(kind="cylinder", radius=4.0),
+                   contact=replace(base.contact, backend="paper-compiled"))
+
+
+def tuft_case() -> Case:
+    """One tuft of 37 round nylon filaments (0.2 mm, 10.5 mm trim length, hexagonal in a
+    1.6 mm hole) in the orthogonal motion, at d = 8.4 mm: 2.1 mm of interference, a fifth of
+    the filaments' reach, so that they bend well beyond the linear range."""
+    base = orthogonal_case()
+    return replace(base, name="tuft",
+                   head=replace(base.head, layout="tufts", tufts=(Tuft(name="tuft"),)),
+                   motion=replace(base.motion, interaction_distance=8.4))
+
+
+# a typical manual toothbrush (docs/tufts.md, "The manual-brush case", gives the sources):
+# 4 rows of 10 tufts, each the `tuft` case's 37 nylon filaments of 0.2 mm in a 1.6 mm hole
+MANUAL_BRUSH_ROWS, MANUAL_BRUSH_COLUMNS = 4, 10
+MANUAL_BRUSH_PITCH = (2.4, 2.3)  # mm, along and across the head (holes 0.8 / 0.7 mm apart)
+
+
+def manual_brush_case() -> Case:
+    """A typical full manual toothbrush head: 40 tufts (4 rows of 10) of 37 round nylon
+    filaments each (0.2 mm, 10.5 mm trim length, hexagonal in 1.6 mm holes on a 2.4 x 2.3
+    mm pitch), 1,480 filaments, in the orthogonal motion at d = 8.4 mm (the `tuft` case's
+    interference) for one slide period. Contact between bristles stays off: every tuft
+    reaches its neighbours, so with it the whole head is one system (docs/tufts.md)."""
+    base = tuft_case()
+    along, across = MANUAL_BRUSH_PITCH
+    tufts = tuple(
+        Tuft(name=f"r{row + 1}c{column + 1}",
+             x=(column - (MANUAL_BRUSH_COLUMNS - 1) / 2) * along,
+             y=(row - (MANUAL_BRUSH_ROWS - 1) / 2) * across)
+        for row in range(MANUAL_BRUSH_ROWS) for column in range(MANUAL_BRUSH_COLUMNS))
+    return replace(base, name="manual-brush", head=replace(base.head, tufts=tufts),
+                   motion=replace(base.motion, periods=1.0))
+
+
+BUILT_IN_CASES = {"orthogonal": orthogonal_case, "parallel": parallel_case,
+                  "interdental": interdental_case, "crown": crown_case, "tuft": tuft_case,
+                  "manual-brush": manual_brush_case}
