@@ -235,7 +235,8 @@ class Head(Parameters):
         # NumPy and SciPy are imported only where tufts are read
         from exubrush.util.pair_search import pairs_within
 
-        for i, j in pairs_within(centres, 2.0 * max(radii)).tolist():
+        # sorted: the first overlapping pair named is the same whatever the tree's order
+        for i, j in sorted(pairs_within(centres, 2.0 * max(radii)).tolist()):
             gap = math.dist(centres[i], centres[j]) - radii[i] - radii[j]
             if gap < 0.0:
                 raise ValueError(

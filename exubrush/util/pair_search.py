@@ -13,16 +13,13 @@ import numpy as np
 
 def pairs_within(points, distance: float) -> np.ndarray:
     """Index pairs (k, 2) of the points (n, dims) at most ``distance`` apart (Euclidean,
-    same unit as the points), each pair with i < j, ordered by i and then by j.
-
-    The order is the one Python's ``sorted`` gives the pairs, whatever order SciPy's tree
-    walk finds them in, so that a caller reporting the first offending pair names the same
-    one every time.
+    same unit as the points), each pair with i < j, in the k-d tree's order: the same for
+    the same points, but sort the rows where a caller's result must not depend on the tree
+    (the contact between bristles keeps it: its forces add up in this order).
     """
     from scipy.spatial import cKDTree  # 0.4 s of import: only where a search runs
 
     points = np.asarray(points, dtype=float)
     if len(points) < 2:
         return np.zeros((0, 2), dtype=np.intp)
-    pairs = cKDTree(points).query_pairs(distance, output_type="ndarray")
-    return pairs[np.lexsort((pairs[:, 1], pairs[:, 0]))]
+    return cKDTree(points).query_pairs(distance, output_type="ndarray")
