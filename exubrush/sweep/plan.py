@@ -32,7 +32,7 @@ from exubrush.parameters.catalogue import BUILT_IN_CASES
 from exubrush.parameters.fields import ParameterError, build, describe_key, to_plain
 from exubrush.parameters.io import load_case, read_toml
 from exubrush.sweep.settings import Execution, SweepSettings
-from exubrush.util.units import UnitError, registry, to_internal
+from exubrush.util.units import UnitError, convert, to_internal
 
 SECTIONS = {
     "sweep": SweepSettings,
@@ -261,9 +261,7 @@ def _magnitude(value: Any, meta: Mapping[str, Any], where: str) -> float:
         raise SweepError(f"{where}: {err}") from None
     if not math.isfinite(internal):
         raise SweepError(f"{where}: {value!r} is not a finite number")
-    if meta["unit"] == "1":
-        return internal
-    return float(registry().Quantity(internal, meta["unit"]).to(meta["display"]).magnitude)
+    return convert(internal, meta["unit"], meta["display"])
 
 
 def _quantity(magnitude: float, unit: str) -> Any:

@@ -134,8 +134,8 @@ def main() -> None:
     parser.add_argument("--out", type=Path,
                         default=Path(__file__).parent.parent / "results" / "benchmarks")
     args = parser.parse_args()
-    if args.repeat < 1:
-        parser.error("--repeat must be at least 1")
+    if not 1 <= args.repeat <= 100:
+        parser.error("--repeat must be 1 to 100 (each quick row runs a command that many times)")
     machine = output_folder(parser, args.out)
     with tempfile.TemporaryDirectory(prefix="exubrush-startup-") as scratch:
         rows = quick_rows(exubrush_command(Path(sys.executable)), args.repeat, Path(scratch))
