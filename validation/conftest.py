@@ -1,10 +1,12 @@
-"""The validation notebooks that take longest (tens of seconds each on 2 cores) belong to
-the slow tier; ``python -m pytest -m "not slow"`` leaves them out."""
+"""The validation notebooks that take longest (tens of seconds each on 2 cores, and
+shear_beam.ipynb's 4-6 s) belong to the slow tier; ``python -m pytest -m "not slow"`` leaves
+them out."""
 
 import pytest
 
 SLOW_NOTEBOOKS = {"howell_parameters.ipynb", "sliding_bristle.ipynb", "surfaces.ipynb",
-                  "bristle_contact.ipynb", "head_contact.ipynb", "elastica_convergence.ipynb"}
+                  "bristle_contact.ipynb", "head_contact.ipynb", "elastica_convergence.ipynb",
+                  "shear_beam.ipynb"}
 
 
 def pytest_collection_modifyitems(items):

@@ -15,10 +15,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
-from matplotlib.collections import PatchCollection, PolyCollection
-from matplotlib.patches import Circle
 
-from exubrush.output.plotting import figure
 from exubrush.output.results import ResultsError, read_results
 from exubrush.parameters.case import BristleContactLaw, Surface
 from exubrush.util.files import atomic_file
@@ -148,6 +145,9 @@ def _touching(lines: np.ndarray, radii: np.ndarray, law: BristleContactLaw) -> n
 
 
 def _draw_view(axis, run: RunShapes, sample: int, horizontal: int, limits) -> None:
+    from matplotlib.collections import PatchCollection, PolyCollection
+    from matplotlib.patches import Circle
+
     lines = run.lines[sample]
     # a bristle's thickness seen in this view is its section's extent along the view's
     # horizontal axis (the bend's own plane is nearly the view's in both views)
@@ -183,6 +183,10 @@ def _draw_view(axis, run: RunShapes, sample: int, horizontal: int, limits) -> No
 
 
 def _figure(runs: list[RunShapes]):
+    # matplotlib (0.8 s of import) only once there is something to draw: a fault in the
+    # saved runs is reported without it
+    from exubrush.output.plotting import figure
+
     return figure(2, len(runs), figsize=(4.5 * len(runs), 5.5), squeeze=False)
 
 

@@ -25,6 +25,7 @@ def _pair():
                  for x in (0.0, D + GAP))
 
 
+@pytest.mark.slow  # 1.2 s or more beside a second worker: full run only
 def test_a_pushed_filament_shares_its_load_with_its_neighbour_as_beam_theory_says():
     # small deflections (2 % of L): once the gap is closed at the tips, the contact force F
     # bends the second, P − F the first: (P − F) L³/3EI − F L³/3EI = gap
@@ -47,6 +48,7 @@ def test_a_pushed_filament_shares_its_load_with_its_neighbour_as_beam_theory_say
 
 
 @pytest.mark.parametrize("load", [1e-3, 4e-3])
+@pytest.mark.slow  # 1.2 s or more beside a second worker: full run only
 def test_a_filament_pushed_far_shares_its_load_as_the_elastica_says(load):
     # tip 1 moves 10 % and 36 % of L; frictionless, held in the x-z plane as the planar
     # reference is (statics.pushed_pair says why)
@@ -69,6 +71,7 @@ def test_a_filament_pushed_far_shares_its_load_as_the_elastica_says(load):
         np.linalg.norm(exact.contact_force), rel=0.01)
 
 
+@pytest.mark.slow  # 1.2 s or more beside a second worker: full run only
 def test_a_filament_pushed_far_never_overlaps_its_neighbour_by_more_than_5_percent():
     pushed = pushed_pair(_pair(), np.array([2e-3, 0.0, 0.0]), BristleContactLaw(),
                          segments=6)
@@ -98,6 +101,7 @@ def test_a_tuft_with_contact_is_one_group_and_reports_its_contacts(cli, tmp_path
     assert derived["bristle_overlap_max_mm"] < 0.05 * D
 
 
+@pytest.mark.slow  # 1.2 s or more beside a second worker: full run only
 def test_touching_filaments_take_larger_steps_mid_stroke_and_miss_no_contact(tmp_path):
     # three filaments pressed together, into the slide: the step grows past
     # solver.step_size where the head slides fast (the mid-stroke cap, 5x), and the broad

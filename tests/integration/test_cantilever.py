@@ -42,6 +42,7 @@ def test_six_segments_within_1_5_percent_of_length(load_index):
 
 
 @pytest.mark.parametrize("load_index", [1.0, 2.0, 5.0, 10.0])
+@pytest.mark.slow  # 1.2 s or more beside a second worker: full run only
 def test_twenty_four_segments_within_0_1_percent_of_length(load_index):
     assert _tip_error(load_index, 24) < 0.001
 

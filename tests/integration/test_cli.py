@@ -35,6 +35,7 @@ def test_small_run_writes_complete_results(cli, tmp_path):
     assert (out / "forces.png").stat().st_size > 10_000
 
 
+@pytest.mark.slow  # 1.2 s or more beside a second worker: full run only
 def test_progress_bar_reaches_the_end(cli, tmp_path):
     done = cli("run", "orthogonal", "--segments", "2", "--periods", "0.05",
                      "--set", "head.rows=1", "--set", "head.columns=2", "--out", str(tmp_path))

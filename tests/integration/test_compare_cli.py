@@ -4,6 +4,7 @@ import csv
 import json
 
 import numpy as np
+import pytest
 
 from exubrush.output.results import Results
 
@@ -27,6 +28,7 @@ def _write_measured(path, series, shift, normal_unit="mN"):
             writer.writerow([f"{v:.9g}" for v in row])
 
 
+@pytest.mark.slow  # 1.2 s or more beside a second worker: full run only
 def test_compare_writes_summary_and_plots(cli, tmp_path, sine_run):
     _save_run(tmp_path / "run", sine_run())
     _write_measured(tmp_path / "rig.csv", sine_run(scale=1.1), shift=0.5)
@@ -55,6 +57,7 @@ def test_compare_refuses_a_directory_without_results(cli, tmp_path, sine_run):
     assert "holds no run.json" in done.stderr and "Traceback" not in done.stderr
 
 
+@pytest.mark.slow  # 1.2 s or more beside a second worker: full run only
 def test_compare_refuses_a_measured_file_without_units(cli, tmp_path, sine_run):
     _save_run(tmp_path / "run", sine_run())
     (tmp_path / "rig.csv").write_text("time,slider_position [mm],normal_force [N],"
@@ -64,6 +67,7 @@ def test_compare_refuses_a_measured_file_without_units(cli, tmp_path, sine_run):
     assert "column 'time' has no unit" in done.stderr and "Traceback" not in done.stderr
 
 
+@pytest.mark.slow  # 1.2 s or more beside a second worker: full run only
 def test_a_file_declaring_model_output_is_never_called_a_measurement(cli, tmp_path, sine_run):
     _save_run(tmp_path / "run", sine_run())
     path = tmp_path / "demo.csv"

@@ -19,6 +19,7 @@ def _run(case_name, backend):
 
 
 @pytest.mark.parametrize("case_name", ["crown", "interdental"])
+@pytest.mark.slow  # 1.2 s or more beside a second worker: full run only
 def test_the_compiled_contact_gives_the_symbolic_forces(case_name):
     symbolic = _run(case_name, "paper-symbolic")
     compiled = _run(case_name, "paper-compiled")
@@ -54,6 +55,7 @@ def test_the_compiled_contact_is_built_on_euler_parameter_tips(model, compiled):
     assert bool(scene.compiled_contacts) is compiled
 
 
+@pytest.mark.slow  # 1.2 s or more beside a second worker: full run only
 def test_where_it_is_not_built_the_compiled_backend_is_the_symbolic_law():
     # PRB's link turns on a rotation vector: its tip keeps the symbolic connector
     symbolic = load_case("interdental", [*ONE_BRISTLE, "model.kind='prb'",

@@ -9,6 +9,7 @@ viewer runs are byte-identical (forces, shapes, solver statistics; CHANGELOG 0.4
 """
 
 import numpy as np
+import pytest
 
 from exubrush.parameters.io import load_case
 from exubrush.run.prepared import prepare
@@ -21,6 +22,7 @@ SLIDE = ("time [s],slider_position [mm]\n0,0\n0.2,0\n0.5,1.2\n0.75,1.5\n1.1,-0.8
          "1.4,-0.8\n1.8,2.0\n2.2,0.4\n")
 
 
+@pytest.mark.slow  # 1.2 s or more beside a second worker: full run only
 def test_the_handle_follows_a_csv_slide_and_the_descent(tmp_path):
     path = tmp_path / "slide.csv"
     path.write_text(SLIDE)

@@ -20,6 +20,7 @@ def _run(drop):
     return results
 
 
+@pytest.mark.slow  # 1.2 s or more beside a second worker: full run only
 def test_the_lagged_drop_keeps_the_forces_with_a_fraction_of_the_jacobians():
     implicit, lagged = _run("implicit"), _run("lagged")
     assert len(lagged.time) == len(implicit.time)

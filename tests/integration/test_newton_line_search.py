@@ -77,6 +77,7 @@ def test_where_the_update_does_not_overshoot_the_solution_is_the_same():
 SMALL = ["head.rows=1", "head.columns=1", "motion.periods=0.05"]
 
 
+@pytest.mark.slow  # 1.2 s or more beside a second worker: full run only
 def test_a_bristle_on_euler_parameters_gives_the_same_forces_with_and_without():
     # Euler parameters bring algebraic coordinates (their normalisation): the blend of
     # states must keep them consistent. Fixed 0.5 ms steps (no cut, so both runs take the

@@ -115,6 +115,7 @@ def test_existing_results_are_never_mixed(cli, tmp_path):
     assert (out / "notes.txt").read_text() == "mine"
 
 
+@pytest.mark.slow  # 1.2 s or more beside a second worker: full run only
 def test_a_failed_solve_keeps_its_partial_results_with_the_reason(cli, tmp_path):
     out = tmp_path / "run"
     # a contact 1000x stiffer than the paper's with no step reduction cannot converge

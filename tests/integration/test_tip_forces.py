@@ -14,6 +14,7 @@ SMALL = ["head.rows=1", "head.columns=2", "motion.periods=0.25"]
 
 
 @pytest.mark.parametrize("backend", ["paper-symbolic", "exudyn-builtin"])
+@pytest.mark.slow  # 1.2 s or more beside a second worker: full run only
 def test_tip_forces_add_up_to_the_head_normal_force(backend):
     results = simulate(load_case("orthogonal", [*SMALL, f"contact.backend='{backend}'"]),
                        progress=False)
@@ -27,6 +28,7 @@ def test_tip_forces_add_up_to_the_head_normal_force(backend):
     assert results.tip_force[:, :, 2].min() >= -1e-9  # the plane pushes, never pulls
 
 
+@pytest.mark.slow  # 1.2 s or more beside a second worker: full run only
 def test_a_run_on_a_tooth_row_writes_its_cleaning_summary(tmp_path):
     case = load_case("interdental", [*SMALL, "motion.periods=0.3"])
     results = simulate(case, progress=False)
@@ -45,6 +47,7 @@ def test_a_run_on_a_tooth_row_writes_its_cleaning_summary(tmp_path):
         assert stroke["wiped_area_mm2"] == pytest.approx(stored["wiped_area_mm2"], rel=1e-9)
 
 
+@pytest.mark.slow  # 1.2 s or more beside a second worker: full run only
 def test_tips_file_says_which_part_each_tip_touches(tmp_path):
     results = simulate(load_case("interdental", [*SMALL, "motion.periods=0.3"]),
                        progress=False)

@@ -41,6 +41,7 @@ def test_the_solution_file_replays_the_run(two_model_runs, cli, model):
         np.testing.assert_allclose(shown, saved, atol=1e-9)
 
 
+@pytest.mark.slow  # 1.2 s or more beside a second worker: full run only
 def test_view_asks_for_a_run_that_kept_its_coordinates(tmp_path, cli):
     done = cli("run", "orthogonal", "--segments", "2", "--periods", "0.02", "--quiet",
                "--set", "head.rows=1", "--set", "head.columns=1", "--out", str(tmp_path))

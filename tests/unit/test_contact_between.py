@@ -44,6 +44,7 @@ def _segment_distance_brute(a0, a1, b0, b1, samples=1001):
     return np.min(np.linalg.norm(pa[:, None] - pb[None], axis=2))
 
 
+@pytest.mark.slow  # 1.2 s or more beside a second worker: full run only
 def test_crossing_segments_touch_at_their_closest_points():
     rng = np.random.default_rng(3)
     for _ in range(60):

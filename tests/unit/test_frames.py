@@ -1,6 +1,7 @@
 """Bristle frames drawn from a saved run (no solve: the shapes are made up here)."""
 
 import numpy as np
+import pytest
 from PIL import Image
 
 from exubrush.output.frames import load_shapes, tube_outline, write_animation, write_frames
@@ -29,6 +30,7 @@ def _saved_run(directory, model):
     return directory
 
 
+@pytest.mark.slow  # 1.2 s or more beside a second worker: full run only
 def test_frames_and_animation_of_two_saved_runs(tmp_path):
     runs = [load_shapes(_saved_run(tmp_path / model, model)) for model in ("dfm", "prb")]
     # the PRB line gains its pivot: root, pivot at (1 - γ) l along the bristle, tip

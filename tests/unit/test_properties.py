@@ -3,6 +3,7 @@ any valid input, not only for the paper's values."""
 
 import math
 
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -81,6 +82,7 @@ LENGTH_UNITS = {"mm": 1.0, "cm": 10.0, "m": 1000.0, "um": 1e-3}
 
 @settings(max_examples=50, deadline=None)
 @given(st.floats(4.0, 50.0), st.sampled_from(sorted(LENGTH_UNITS)))
+@pytest.mark.slow  # 1.2 s or more beside a second worker: full run only
 def test_any_positive_length_in_any_unit_is_read_in_mm(length, unit):
     # lengths from 4 mm: the tip (r = 0.4 mm) must reach the plane at d = 4.2 mm
     value = length / LENGTH_UNITS[unit]
@@ -90,6 +92,7 @@ def test_any_positive_length_in_any_unit_is_read_in_mm(length, unit):
 
 @settings(max_examples=50, deadline=None)
 @given(st.floats(-1e3, 0.0))
+@pytest.mark.slow  # 1.2 s or more beside a second worker: full run only
 def test_non_positive_lengths_are_refused_by_name(value):
     try:
         load_case("orthogonal", [f"head.bristle.length='{value!r} mm'"])
@@ -115,6 +118,7 @@ def test_poisson_ratio_range(nu):
 
 @settings(max_examples=100, deadline=None)
 @given(st.text(max_size=30))
+@pytest.mark.slow  # 1.2 s or more beside a second worker: full run only
 def test_arbitrary_text_for_a_quantity_gives_a_parameter_error_or_a_value(text):
     try:
         case = load_case("orthogonal", [f"head.material.youngs_modulus={text!r}"])

@@ -11,6 +11,7 @@ L, R, GAP, EI = 10.0, 0.1, 0.01, 0.157  # mm, mm, mm, N·mm²: 0.2 mm nylon fila
 FLEXIBILITY = L**3 / (3.0 * EI)
 
 
+@pytest.mark.slow  # 1.2 s or more beside a second worker: full run only
 def test_below_the_closing_load_the_second_beam_carries_nothing():
     load = 0.5 * GAP / FLEXIBILITY
     pair = touching_cantilevers(L, GAP, R, EI, load, segments=50)
@@ -22,6 +23,7 @@ def test_below_the_closing_load_the_second_beam_carries_nothing():
 
 
 @pytest.mark.parametrize("load", [1.5e-4, 3e-4])
+@pytest.mark.slow  # 1.2 s or more beside a second worker: full run only
 def test_small_loads_follow_beam_theory(load):
     # (P − F) f − F f = gap; the deflections are 1.6-3 % of L, so beam theory's error is of
     # the order of their square (< 0.1 %): tolerance 0.5 %
