@@ -8,6 +8,7 @@ folder is listed before and after, and only the output directory may have change
 
 import errno
 import os
+import shutil
 import signal
 import subprocess
 import sys
@@ -37,7 +38,10 @@ def _only_changed(before, after, prefix):
     return all(k == prefix or k.startswith(prefix + os.sep) for k in changed), changed
 
 
-def _saved_run(directory):
+@pytest.fixture(scope="module")
+def saved_run(tmp_path_factory):
+    """A saved run to copy into each test's folder (saving it draws its plot: 0.3-1 s)."""
+    directory = tmp_path_factory.mktemp("saved")
     t = np.linspace(0.0, 2.0, 201)
     Results(t, np.sin(t), np.ones_like(t), 0.5 * np.ones_like(t), np.zeros_like(t),
             np.zeros(0), np.zeros((0, 0, 0, 3)),
@@ -70,7 +74,7 @@ def _saved_run(directory):
     (["frames", "garbled"], 2, "'garbled/run.json' is not UTF-8 text (byte 0)"),
     (["compare", "garbled", "measured.csv"], 2, "'garbled/run.json' is not UTF-8 text"),
 ])
-def test_a_fault_ends_in_one_line(tmp_path, args, status, message):
+def test_a_fault_ends_in_one_line(tmp_path, saved_run, args, status, message):
     (tmp_path / "plain.txt").write_text("not a directory\n")
     (tmp_path / "binary.toml").write_bytes(b"\xff\xfe\x00\x01")
     (tmp_path / "binary.csv").write_bytes(b"\xff\xfe\x00\x01")
@@ -79,7 +83,7 @@ def test_a_fault_ends_in_one_line(tmp_path, args, status, message):
     (tmp_path / "measured.csv").write_text(
         "time [s],slider_position [mm],normal_force [N],tangential_force [N]\n"
         + "".join(f"{t:.2f},{np.sin(t):.6f},1,0.5\n" for t in np.linspace(0, 2, 201)))
-    _saved_run(tmp_path / "saved")
+    shutil.copytree(saved_run, tmp_path / "saved")
     (tmp_path / "garbled").mkdir()
     (tmp_path / "garbled" / "run.json").write_bytes(b"\xff\xfe\x00\x01")
     before = _tree(tmp_path)

@@ -4,6 +4,7 @@ references, the sweep plan and the units)."""
 
 from pathlib import Path
 
+import pytest
 from mypy import api
 
 ROOT = Path(__file__).parents[2]  # pyproject.toml lists the files relative to it
@@ -14,6 +15,7 @@ def _mypy(*args: str) -> tuple[int, str]:
     return status, stdout + stderr
 
 
+@pytest.mark.slow  # 10 s on a cold mypy cache (a fresh clone): full run only
 def test_the_pure_layers_type_check(monkeypatch):
     monkeypatch.chdir(ROOT)
     status, report = _mypy()
