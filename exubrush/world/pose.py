@@ -156,16 +156,16 @@ class SineTerm:
         return peak
 
     def _envelope(self, t: float) -> tuple[float, float, float]:
-        """e, e' [1/s] and e'' [1/s²] at t [s] (product of a rising and a falling step)."""
+        """e, e' [1/s] and e'' [1/s²] at t [s]: the rising step in the first half of the
+        term, the falling one in the second (2 ramp <= end - start: they never overlap)."""
         if self.ramp == 0.0:
             return 1.0, 0.0, 0.0
-        up, dup, ddup = smooth_step((t - self.start) / self.ramp)
-        down, ddown, dddown = smooth_step((self.end - t) / self.ramp)  # d/dt flips the sign
-        return (
-            up * down,
-            (dup * down - up * ddown) / self.ramp,
-            (ddup * down - 2.0 * dup * ddown + up * dddown) / self.ramp**2,
-        )
+        if t - self.start <= self.end - t:
+            s, ds, dds = smooth_step((t - self.start) / self.ramp)
+        else:
+            s, ds, dds = smooth_step((self.end - t) / self.ramp)
+            ds = -ds  # d/dt of (end - t) / ramp
+        return s, ds / self.ramp, dds / self.ramp**2
 
     def evaluate(self, t: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Pose, rate and acceleration (6,) each at time t [s] (mm, rad; per s; per s²)."""
