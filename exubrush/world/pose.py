@@ -116,7 +116,7 @@ class SineTerm:
     end: float = math.inf
     ramp: float = 0.0
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         if self.axis not in AXES:
             raise ValueError(f"SineTerm.axis must be one of {', '.join(AXES)}, not {self.axis!r}")
         for name in ("amplitude", "frequency", "phase", "start", "end", "ramp"):
@@ -146,8 +146,8 @@ class SineTerm:
     @property
     def peak_rate(self) -> np.ndarray:
         """Upper bound of |rate| per coordinate (6,) [mm/s, rad/s]: a (2π f + 15/(8 ramp)),
-        15/8 being the smooth step's largest slope; a 2π f without a ramp, which the rate
-        reaches wherever the sine passes zero."""
+        15/8 being the smooth step's largest slope; without a ramp a 2π f, reached where
+        the sine passes zero within [start, end]."""
         omega = 2.0 * math.pi * self.frequency
         peak = np.zeros(6)
         peak[AXES.index(self.axis)] = self.amplitude * (
