@@ -9,12 +9,14 @@ the unit is converted with pint, so ``[ms]``, ``[m]`` or ``[mN]`` are read as we
 from __future__ import annotations
 
 import csv
+from collections.abc import Collection
 from pathlib import Path
 
 import numpy as np
 
 
-def read_unit_table(path: str | Path, columns: dict[str, str], what: str) -> dict[str, np.ndarray]:
+def read_unit_table(path: str | Path, columns: dict[str, str], what: str,
+                    optional: Collection[str] = ()) -> dict[str, np.ndarray]:
     """Read the named columns of a unit-labelled CSV, converted to internal units.
 
     Parameters
@@ -26,11 +28,14 @@ def read_unit_table(path: str | Path, columns: dict[str, str], what: str) -> dic
         columns of the file are ignored.
     what : str
         What the file is, for messages (e.g. ``"slide CSV"``).
+    optional : collection of str
+        Labels of ``columns`` the file may lack; a missing one is left out of the result.
+        A present one is read as any other (its unit is required).
 
     Returns
     -------
     dict
-        Label -> values (float array) in the internal unit.
+        Label -> values (float array) in the internal unit, for each column the file has.
 
     Raises
     ------
@@ -48,6 +53,8 @@ def read_unit_table(path: str | Path, columns: dict[str, str], what: str) -> dic
     data = {}
     for label, target in columns.items():
         if label not in header:
+            if label in optional:
+                continue
             raise ValueError(f"{name} has no column '{label} [unit]'")
         index, unit = header[label]
         if not unit:
