@@ -419,15 +419,69 @@ class Model(Parameters):
         return "rotation-vector" if self.kind == "prb" else "euler-parameters"
 
 
+POSE_AXES = ("x", "y", "z", "rx", "ry", "rz")  # exubrush.world.pose.AXES (a test keeps them equal)
+
+
+@dataclass(frozen=True)
+class SineMotion(Parameters):
+    """A sine on one coordinate of the head's pose, added to the approach and the slide
+    (``[[motion.sine]]``; exubrush.world.pose.SineTerm, docs/motion.md).
+
+    value = e(t) a sin(2π f (t - t₀) + φ) from t₀ = the slide's start + ``start`` for
+    ``duration`` (0: to the run's end), e(t) rising from 0 to 1 over ``ramp_cycles``
+    cycles and falling again before a finite end, so the head never jerks.
+    """
+
+    axis: str = param("y", "pose coordinate: x, y, z [mm] along the head's axes, or rx, ry, "
+                           "rz [deg] about them (about motion.pivot)", "text", choices=POSE_AXES)
+    amplitude: float = param(0.0, "x, y, z: amplitude of the translation", "mm", minimum=0.0)
+    angle: float = param(0.0, "rx, ry, rz: amplitude of the rotation", "rad", "deg",
+                         minimum=0.0, below=math.pi)
+    frequency: float = param(260.0, "frequency", "Hz", above=0.0)
+    phase: float = param(0.0, "phase at the term's start", "rad", "deg")
+    start: float = param(0.0, "start after the slide's start (the end of the hold)", "s",
+                         minimum=0.0)
+    duration: float = param(0.0, "how long the term acts (0: to the end of the run)", "s",
+                            minimum=0.0)
+    ramp_cycles: float = param(2.0, "cycles over which the amplitude rises from 0 (and "
+                                    "falls before a finite end); 0: none, the head jerks",
+                               minimum=0.0)
+
+    @property
+    def rotation(self) -> bool:
+        """Whether the term turns the head (rx, ry, rz) rather than moving it."""
+        return self.axis.startswith("r")
+
+    @property
+    def size(self) -> float:
+        """The amplitude in the internal unit of its axis (mm or rad)."""
+        return self.angle if self.rotation else self.amplitude
+
+    def check(self) -> None:
+        """The amplitude that fits the axis, none of the other; a finite term's ramps fit."""
+        given, other = ("angle", "amplitude") if self.rotation else ("amplitude", "angle")
+        if getattr(self, other) != 0.0:
+            raise ValueError(f"axis {self.axis!r} takes {given}, not {other}")
+        if self.size == 0.0:
+            raise ValueError(f"axis {self.axis!r} needs a {given} above 0")
+        ramp = self.ramp_cycles / self.frequency
+        if self.duration and 2.0 * ramp > self.duration:
+            raise ValueError(f"duration {self.duration:g} s is shorter than the rise and fall "
+                             f"of ramp_cycles = {self.ramp_cycles:g} (2 x {ramp:.4g} s)")
+
+
 @dataclass(frozen=True)
 class Motion(Parameters):
-    """Approach, hold and slide of the head (see exubrush.world.motion)."""
+    """Approach, hold and slide of the head, and any sine or tabulated pose terms on top
+    (see exubrush.world.motion, exubrush.world.pose and docs/motion.md)."""
 
     direction: str = param(
         "orthogonal", "slide axis: across the long axis (orthogonal) or along it (parallel)",
         "text", choices=("orthogonal", "parallel"),
     )
-    profile: str = param("sine", "slide profile", "text", choices=("sine", "csv"))
+    profile: str = param("sine", "slide profile (none: the head does not slide; the run "
+                                 "still lasts periods x period after the hold)", "text",
+                         choices=("sine", "csv", "none"))
     amplitude: float = param(15.0, "sine: slide amplitude", "mm", above=0.0)
     period: float = param(12.0, "sine: slide period", "s", above=0.0)
     periods: float = param(2.0, "sine: number of slide periods simulated", above=0.0)
@@ -448,10 +502,27 @@ class Motion(Parameters):
         "text", choices=("auto", "on", "off"),
     )
 
+    pivot: tuple[float, ...] = param(
+        (0.0, 0.0, 0.0), "point the head turns about, in the head frame (origin: the "
+                         "roots' surface at the head's centre)", "mm")
+    sine: tuple[SineMotion, ...] = ()
+    pose_csv: str = param("", "pose table added to the motion: time and any of x, y, z, rx, "
+                              "ry, rz, units in the header (docs/motion.md)", "text")
+    pose_csv_start: float = param(0.0, "when the pose table's first row applies, after the "
+                                       "slide's start", "s", minimum=0.0)
+
     def check(self) -> None:
-        """A CSV profile needs a file."""
+        """A CSV profile needs a file; the pivot is a point."""
         if self.profile == "csv" and not self.csv_file:
             raise ValueError("profile 'csv' needs csv_file")
+        if len(self.pivot) != 3:
+            raise ValueError(f"pivot needs 3 coordinates (x, y, z), got {len(self.pivot)}")
+
+    @property
+    def posed(self) -> bool:
+        """Whether any pose term (motion.sine, motion.pose_csv) moves the head beyond the
+        approach and the slide."""
+        return bool(self.sine or self.pose_csv)
 
 
 @dataclass(frozen=True)

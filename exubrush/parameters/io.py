@@ -71,6 +71,9 @@ def load_case(case: str, overrides: list[str] | tuple[str, ...] = ()) -> Case:
     if built.motion.profile == "csv":
         built = replace(built, motion=replace(
             built.motion, csv_file=_resolved(built.motion.csv_file, folder)))
+    if built.motion.pose_csv:
+        built = replace(built, motion=replace(
+            built.motion, pose_csv=_resolved(built.motion.pose_csv, folder)))
     if built.surface.kind == "mesh":
         built = replace(built, surface=replace(
             built.surface, mesh_file=_resolved(built.surface.mesh_file, folder)))

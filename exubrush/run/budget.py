@@ -15,11 +15,12 @@ Estimates (per run, internal units):
 
 Resolution: the largest step must resolve the motion, or the solver steps over it (a
 20 s step on a 12 s slide period ran to the end with a peak force 9.4x the right one):
-at least 100 steps per slide period (or over a slide CSV's duration), 20 per approach and 4
-per hold. A slide CSV's sample spacing is no bound: a finely sampled smooth profile needs
-no step that small, and where a profile moves faster than the step resolves (a jump, a
-sharp corner), a warning says so (:func:`motion_warnings`). The output interval must fit
-into the run at least twice, or the run records nothing but its start.
+at least 100 steps per slide period (or over a slide CSV's duration), 20 per approach, 4
+per hold, 20 per cycle of each sine pose term and 100 over a pose CSV's duration. A slide
+CSV's sample spacing is no bound: a finely sampled smooth profile needs no step that small,
+and where a profile moves faster than the step resolves (a jump, a sharp corner), a warning
+says so (:func:`motion_warnings`). The output interval must fit into the run at least
+twice, or the run records nothing but its start.
 """
 
 from __future__ import annotations
@@ -30,6 +31,7 @@ from dataclasses import dataclass
 STEPS_PER_PERIOD = 100
 STEPS_PER_APPROACH = 20
 STEPS_PER_HOLD = 4
+STEPS_PER_CYCLE = 20  # of a sine pose term (motion.sine): its drive, not the filaments' answer
 COPIES = 3  # node histories held at once while joining the groups' results
 DOUBLE = 8  # bytes
 C_INT = 2**31 - 1  # Exudyn's step counter is a C int
@@ -108,6 +110,14 @@ def unresolved(case, motion) -> list[str]:
     else:  # the profile's own length; its fast parts are motion_warnings' business
         scales.append((motion.slide.duration / STEPS_PER_PERIOD,
                        f"{STEPS_PER_PERIOD} steps over the slide CSV's duration"))
+    for i, entry in enumerate(m.sine):
+        scales.append((1.0 / (entry.frequency * STEPS_PER_CYCLE),
+                       f"{STEPS_PER_CYCLE} steps per cycle of motion.sine[{i}] "
+                       f"({entry.frequency:g} Hz)"))
+    table = motion.pose.table if motion.pose is not None else None
+    if table is not None:
+        scales.append((table.duration / STEPS_PER_PERIOD,
+                       f"{STEPS_PER_PERIOD} steps over the pose CSV's duration"))
     if motion.hold_duration > 0.0:
         scales.append((motion.hold_duration / STEPS_PER_HOLD,
                        f"{STEPS_PER_HOLD} steps per hold (motion.hold_duration)"))

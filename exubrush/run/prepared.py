@@ -32,6 +32,7 @@ from exubrush.run.sanity import normal_force_bound, static_force_limits
 from exubrush.world.kinematics import SLIDE_AXES
 from exubrush.world.mesh import MeshError, MeshSurface, read_mesh
 from exubrush.world.motion import HeadMotion, TabulatedSlide, head_motion
+from exubrush.world.pose import with_pose
 from exubrush.world.surfaces import highest_near, to_surface_frame
 
 
@@ -149,6 +150,10 @@ def prepare(case: Case) -> PreparedCase:
     except ValueError as err:
         key = "motion.csv_file: " if case.motion.profile == "csv" else ""
         raise ParameterError(f"{key}{err}") from None
+    try:
+        motion = with_pose(motion, case.motion)
+    except ValueError as err:
+        raise ParameterError(f"motion.pose_csv: {err}") from None
     work = estimate(case, len(bristles), motion.end_time)
     _refuse(over_work(case, work) + unresolved(case, motion))
     mesh = None
@@ -192,6 +197,9 @@ def input_digests(motion: HeadMotion, mesh: MeshSurface | None = None
     digests = []
     if isinstance(motion.slide, TabulatedSlide):
         digests.append(("motion.csv_file", motion.slide.digest))
+    table = motion.pose.table if motion.pose is not None else None
+    if table is not None:
+        digests.append(("motion.pose_csv", table.digest))
     if mesh is not None:
         digests.append(("surface.mesh_file",
                         hashlib.sha256(np.ascontiguousarray(mesh.triangles).tobytes())

@@ -38,6 +38,7 @@ from exubrush.run.newton import LineSearch, after_step_cut, has_lie_group_nodes
 from exubrush.run.prepared import PreparedCase
 from exubrush.run.solver import fresh_jacobian_after_step_change, linear_solver
 from exubrush.run.step_policy import sliding_step_cap
+from exubrush.world.kinematics import handle_coordinates
 from exubrush.world.mesh import frame_with_normal
 from exubrush.world.motion import HeadMotion
 from exubrush.world.surfaces import orientation, tooth_pitch
@@ -122,7 +123,8 @@ class Scene:
 
 def _add_drive(scene: Scene, handle_node) -> None:
     """Prescribe the handle's six coordinates: the slide along the slide axis plus the
-    descent along z, nothing on the other axes.
+    descent along z, nothing on the other axes; with pose terms, all six follow
+    exubrush.world.kinematics.handle_coordinates.
 
     The moving axes' offsets are set in a step hook, not by an offset user function: Exudyn
     calls the pre-step function before every step attempt (retries included) with t at the
@@ -133,20 +135,23 @@ def _add_drive(scene: Scene, handle_node) -> None:
     mbs = scene.mbs
     ground_node = mbs.AddNode(eii.NodePointGround())
     ground_marker = mbs.AddMarker(eii.MarkerNodeCoordinate(nodeNumber=ground_node, coordinate=0))
-    motion = scene.motion
+    motion, slide_axis = scene.motion, scene.slide_axis
+    posed = motion.pose is not None
+    start = handle_coordinates(motion, slide_axis, 0.0) if posed else None
     moving = []  # (constraint, slide factor, descent factor) of the axes that move
     for axis in range(6):
         marker = mbs.AddMarker(eii.MarkerNodeCoordinate(nodeNumber=handle_node, coordinate=axis))
-        along = float(scene.slide_axis[axis]) if axis < 3 else 0.0
+        along = float(slide_axis[axis]) if axis < 3 else 0.0
         down = 1.0 if axis == 2 else 0.0
+        offset = (float(start[axis]) if start is not None
+                  else along * motion.sliding(0.0)[0] - down * motion.descent(0.0)[0])
         constraint = mbs.AddObject(
             eii.ObjectConnectorCoordinate(
-                markerNumbers=[ground_marker, marker],
-                offset=along * motion.sliding(0.0)[0] - down * motion.descent(0.0)[0],
+                markerNumbers=[ground_marker, marker], offset=offset,
                 visualization=eii.VObjectConnectorCoordinate(show=False),
             )
         )
-        if along or down:
+        if along or down or posed:
             moving.append((constraint, along, down))
         if axis < 3:
             scene.drive_sensors.append(
@@ -158,9 +163,12 @@ def _add_drive(scene: Scene, handle_node) -> None:
     last = [None] * len(moving)
 
     def drive(mbs, t):
-        slide, descent = motion.sliding(t)[0], motion.descent(t)[0]
+        if posed:
+            offsets = handle_coordinates(motion, slide_axis, t)
+        else:
+            slide, descent = motion.sliding(t)[0], motion.descent(t)[0]
         for k, (constraint, along, down) in enumerate(moving):
-            offset = along * slide - down * descent
+            offset = float(offsets[k]) if posed else along * slide - down * descent
             # an unchanged offset is not set again (~0.9 µs a call): the descent holds
             # after the approach, the slide before it
             if offset != last[k]:

@@ -54,9 +54,11 @@ def sliding_step_cap(case: Case, motion: HeadMotion, tips: list):
     if case.surface.kind == "tooth-row":  # tips snap off its edges into the gaps
         clear = tips_on_flat_tops(case.surface, tips, ahead, motion.slide.peak_speed)
     fast = motion.sliding_faster_throughout(speed, ahead, solver.step_size)
+    pose = motion.pose  # its terms move faster than a slide: never a larger step while on
 
     def larger_allowed(mbs, t):
-        return fast(t) and (clear is None or clear(mbs))
+        return (fast(t) and (pose is None or not pose.acts_between(t, t + ahead))
+                and (clear is None or clear(mbs)))
 
     return step_cap(solver.step_size, sliding_step, larger_allowed)
 

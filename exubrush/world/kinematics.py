@@ -17,11 +17,29 @@ SLIDE_AXES = {"orthogonal": np.array([0.0, 1.0, 0.0]), "parallel": np.array([1.0
 DOWN = np.array([0.0, 0.0, -1.0])  # the approach: towards the surface z = 0
 
 
+HEAD_ORIGIN = np.zeros((1, 3))  # the handle's node: the head frame's origin at t = 0
+
+
 def handle_kinematics(motion: HeadMotion, slide_axis: np.ndarray, t: float):
-    """Handle displacement from its start [mm], velocity [mm/s], acceleration [mm/s²] at t."""
+    """Handle displacement from its start [mm], velocity [mm/s], acceleration [mm/s²] at t:
+    the slide and the descent, plus what the pose terms (about the pivot) add."""
     s, v, a = motion.sliding(t)
     z, vz, az = motion.descent(t)
-    return s * slide_axis + z * DOWN, v * slide_axis + vz * DOWN, a * slide_axis + az * DOWN
+    position = s * slide_axis + z * DOWN
+    velocity = v * slide_axis + vz * DOWN
+    acceleration = a * slide_axis + az * DOWN
+    if motion.pose is not None:
+        moved, moving, turning = motion.pose.point_motion(HEAD_ORIGIN, t)
+        position, velocity, acceleration = (
+            position + moved[0], velocity + moving[0], acceleration + turning[0])
+    return position, velocity, acceleration
+
+
+def handle_coordinates(motion: HeadMotion, slide_axis: np.ndarray, t: float) -> np.ndarray:
+    """The handle node's six coordinates at t: its displacement [mm] and its Tait-Bryan
+    angles (rx, ry, rz) [rad] (exubrush.world.pose), as the drive prescribes them."""
+    angles = np.zeros(3) if motion.pose is None else motion.pose.evaluate(t)[0][3:]
+    return np.concatenate([handle_kinematics(motion, slide_axis, t)[0], angles])
 
 
 def handle_history(motion: HeadMotion, slide_axis: np.ndarray, times: np.ndarray):

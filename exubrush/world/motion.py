@@ -26,6 +26,7 @@ from exubrush.util.tables import check_time_axis, read_unit_table
 if TYPE_CHECKING:
     from exubrush.models.geometry import BristleGeometry
     from exubrush.parameters.case import Case
+    from exubrush.world.pose import HeadPose
 
 
 def smooth_step(tau: float) -> tuple[float, float, float]:
@@ -175,8 +176,25 @@ def read_slide_csv(path: str | Path) -> TabulatedSlide:
 
 
 @dataclass(frozen=True)
+class RestingSlide:
+    """No slide: the head stays where the approach left it for ``duration`` [s]
+    (motion.profile "none": a head moved by its pose terms only)."""
+
+    duration: float
+    peak_speed = 0.0
+
+    def velocities(self, taus: np.ndarray) -> np.ndarray:
+        """Zero velocity [mm/s] at each slide time of ``taus``."""
+        return np.zeros(np.shape(taus))
+
+    def evaluate(self, tau: float) -> tuple[float, float, float]:
+        """Position, velocity and acceleration: all zero."""
+        return 0.0, 0.0, 0.0
+
+
+@dataclass(frozen=True)
 class HeadMotion:
-    """Approach, hold, then slide of the head.
+    """Approach, hold, then slide of the head, and the pose terms added to them.
 
     Attributes
     ----------
@@ -186,14 +204,20 @@ class HeadMotion:
         Time of the approach [s].
     hold_duration : float
         Rest between approach and slide [s].
-    slide : SineSlide or TabulatedSlide
+    slide : SineSlide, TabulatedSlide or RestingSlide
         The sliding profile, started at ``slide_start``.
+    pose : HeadPose or None
+        Sine and tabulated terms on the head's six pose coordinates, about a pivot given in
+        the head frame (its origin: the roots' surface at the head's centre at t = 0),
+        their times absolute; None where there are none (the paper's rig). Added by
+        :func:`exubrush.world.pose.with_pose`.
     """
 
     approach_distance: float
     approach_duration: float
     hold_duration: float
-    slide: SineSlide | TabulatedSlide
+    slide: SineSlide | TabulatedSlide | RestingSlide
+    pose: HeadPose | None = None
 
     @property
     def slide_start(self) -> float:
@@ -263,9 +287,13 @@ def head_motion(case: Case, bristles: Sequence[BristleGeometry]) -> tuple[HeadMo
     """The head's motion and the start height of the roots' surface above the plane [mm]."""
     m = case.motion
     height = start_height(case, bristles)
-    slide = read_slide_csv(m.csv_file) if m.profile == "csv" else SineSlide(
-        m.amplitude, m.period, m.periods
-    )
+    slide: SineSlide | TabulatedSlide | RestingSlide
+    if m.profile == "csv":
+        slide = read_slide_csv(m.csv_file)
+    elif m.profile == "none":
+        slide = RestingSlide(m.period * m.periods)
+    else:
+        slide = SineSlide(m.amplitude, m.period, m.periods)
     motion = HeadMotion(
         approach_distance=height - m.interaction_distance,
         approach_duration=m.approach_duration,

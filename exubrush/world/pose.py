@@ -27,15 +27,20 @@ A = Rx(rx) Rz(rz), whichever term is listed first.
 
 from __future__ import annotations
 
+import hashlib
 import math
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from exubrush.util.tables import read_unit_table
-from exubrush.world.motion import TabulatedSlide, smooth_step
+from exubrush.world.motion import HeadMotion, TabulatedSlide, smooth_step
+
+if TYPE_CHECKING:
+    from exubrush.parameters.case import Motion
 
 AXES = ("x", "y", "z", "rx", "ry", "rz")
 # internal unit of each pose coordinate
@@ -230,6 +235,14 @@ class TableTerm:
         return self.start + self.duration
 
     @property
+    def digest(self) -> str:
+        """SHA-256 of the coordinates' interpolants, in axis order (equal for equal
+        tables, whatever else the file holds)."""
+        return hashlib.sha256("".join(
+            f"{AXES[k]}:{slide.digest};" for k, slide in sorted(self._slides.items())
+        ).encode()).hexdigest()
+
+    @property
     def peak_rate(self) -> np.ndarray:
         """Largest |rate| per coordinate (6,) [mm/s, rad/s], exact
         (:attr:`TabulatedSlide.peak_speed`)."""
@@ -293,6 +306,15 @@ class HeadPose:
             raise ValueError(f"the pivot must be three finite coordinates [mm], not {pivot!r}")
 
     @property
+    def table(self) -> TableTerm | None:
+        """The tabulated term (a pose CSV), if there is one."""
+        return next((term for term in self.terms if isinstance(term, TableTerm)), None)
+
+    def acts_between(self, t0: float, t1: float) -> bool:
+        """Whether any term moves the head at some time of [t0, t1] [s]."""
+        return any(term.start <= t1 and term.end_time >= t0 for term in self.terms)
+
+    @property
     def end_time(self) -> float:
         """Time after which no term changes [s] (0 without terms)."""
         return max((term.end_time for term in self.terms), default=0.0)
@@ -328,3 +350,26 @@ class HeadPose:
             rate[:3] + np.cross(omega, arm),
             acceleration[:3] + np.cross(alpha, arm) + np.cross(omega, np.cross(omega, arm)),
         )
+
+
+def with_pose(head: HeadMotion, motion: Motion) -> HeadMotion:
+    """``head`` with the pose terms of a case's ``[motion]`` (``sine`` entries and
+    ``pose_csv``) added, their times counted from the slide's start, about
+    ``motion.pivot`` (head frame, mm); ``head`` itself where there are none.
+
+    Raises ValueError naming the pose CSV if it cannot be read.
+    """
+    if not motion.posed:
+        return head
+    terms: list[SineTerm | TableTerm] = []
+    for entry in motion.sine:
+        start = head.slide_start + entry.start
+        terms.append(SineTerm(
+            axis=entry.axis, amplitude=entry.size, frequency=entry.frequency,
+            phase=entry.phase, start=start,
+            end=start + entry.duration if entry.duration else math.inf,
+            ramp=entry.ramp_cycles / entry.frequency,
+        ))
+    if motion.pose_csv:
+        terms.append(read_pose_csv(motion.pose_csv, head.slide_start + motion.pose_csv_start))
+    return replace(head, pose=HeadPose(terms, motion.pivot))

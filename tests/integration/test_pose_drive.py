@@ -1,0 +1,68 @@
+"""The drive with pose terms: the handle's six solved coordinates follow the prescribed
+pose (a turn about a pivot and a vibration on top of the slide), and a head without pose
+terms is driven as before (tests/integration/test_drive.py; the default runs' forces are
+byte-identical to 0.13.0's, CHANGELOG)."""
+
+import numpy as np
+import pytest
+
+from exubrush.parameters.io import load_case
+from exubrush.run.prepared import prepare
+from exubrush.run.solve import solve_group
+from exubrush.world.kinematics import handle_coordinates, handle_kinematics
+
+CASE = """name = "posed-drive"
+[head]
+rows = 1
+columns = 1
+[motion]
+amplitude = "1 mm"
+period = "0.05 s"
+periods = 1
+approach_duration = "0.02 s"
+hold_duration = "0.005 s"
+pivot = ["2 mm", "1 mm", "0 mm"]
+[[motion.sine]]
+axis = "rz"
+angle = "15 deg"
+frequency = "40 Hz"
+ramp_cycles = 0.5
+[[motion.sine]]
+axis = "x"
+amplitude = "0.2 mm"
+frequency = "100 Hz"
+start = "0.01 s"
+"""
+
+
+@pytest.mark.slow  # 2-4 s: an Exudyn solve at 0.25 ms steps
+def test_the_handle_follows_a_turn_and_a_vibration_on_the_slide(tmp_path):
+    path = tmp_path / "posed.toml"
+    path.write_text(CASE)
+    step = 2.5e-4  # s: 40 steps per 100 Hz cycle; also the recording interval
+    prepared = prepare(load_case(str(path), [
+        f"solver.step_size='{step} s'", "output.solution_file=true",
+        f"output.interval='{step} s'", f"output.shape_interval='{step} s'"]))
+    solution = solve_group(prepared, prepared.groups[0])
+    assert solution.completed
+    time, handle = solution.coordinates[:, 0], solution.coordinates[:, 1:7]
+    motion, axis = prepared.motion, prepared.slide_axis
+    expected = np.array([handle_coordinates(motion, axis, t) for t in time])
+    assert time[-1] > motion.end_time - 2 * step
+    assert np.ptp(expected[:, 5]) > 0.4  # rad: it turned (2 x 15 deg)
+    # recorded at the step ends, put on the recording grid: up to max|acceleration| h²/8
+    # off the exact motion (as in test_drive.py); a drive one step late is off by speed h
+    fine = np.linspace(0.0, motion.end_time, 4001)
+    kinematics = [handle_kinematics(motion, axis, t) for t in fine]
+    acceleration = max(np.abs(a).max() for _, _, a in kinematics)
+    speed = max(np.abs(v).max() for _, v, _ in kinematics)
+    bound = acceleration * step**2 / 8 + 1e-9
+    assert bound < speed * step / 10
+    # the sine slide starts at its full speed (the paper's profile): a kink that linear
+    # interpolation between step ends cannot follow, so the steps beside it are left out
+    smooth = np.abs(time - motion.slide_start) > 2 * step
+    np.testing.assert_allclose(handle[smooth, :3], expected[smooth, :3], rtol=0, atol=bound)
+    # the angles likewise, with their own largest acceleration (the ramp's included)
+    turn = max(np.abs(motion.pose.evaluate(t)[2][3:]).max() for t in fine)
+    np.testing.assert_allclose(handle[:, 3:], expected[:, 3:], rtol=0,
+                               atol=turn * step**2 / 8 + 1e-12)

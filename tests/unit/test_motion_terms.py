@@ -1,0 +1,132 @@
+"""Pose terms in a case (``[[motion.sine]]``, ``motion.pose_csv``, ``motion.pivot``): read
+and checked as parameters, turned into the head's motion, bounded by the step budget."""
+
+import math
+
+import numpy as np
+import pytest
+
+from exubrush.parameters.case import POSE_AXES, Motion
+from exubrush.parameters.fields import ParameterError, build
+from exubrush.parameters.io import load_case
+from exubrush.run.prepared import prepare
+from exubrush.world.kinematics import handle_coordinates, handle_kinematics
+from exubrush.world.motion import HeadMotion, RestingSlide
+from exubrush.world.pose import AXES, with_pose
+
+SONIC = {"axis": "y", "amplitude": "0.3 mm", "frequency": "260 Hz"}
+
+
+def _case_file(tmp_path, motion_lines, name="posed"):
+    path = tmp_path / f"{name}.toml"
+    path.write_text("[head]\nrows = 1\ncolumns = 1\n[motion]\n" + motion_lines)
+    return str(path)
+
+
+def test_the_parameters_know_the_poses_axes():
+    assert POSE_AXES == AXES
+
+
+def test_a_sine_entry_reads_its_units():
+    motion = build(Motion, {"sine": [SONIC, {"axis": "rz", "angle": "20 deg",
+                                             "frequency": "7600 1/min"}]})
+    y, rz = motion.sine
+    assert (y.size, y.frequency) == (0.3, 260.0)
+    assert rz.size == pytest.approx(math.radians(20.0), rel=1e-15)  # a unit conversion
+    assert rz.frequency == pytest.approx(7600.0 / 60.0, rel=1e-15)
+    assert motion.posed and not build(Motion, {}).posed
+
+
+@pytest.mark.parametrize("entry, message", [
+    ({"axis": "rz", "amplitude": "1 mm"}, "axis 'rz' takes angle, not amplitude"),
+    ({"axis": "x", "angle": "5 deg"}, "axis 'x' takes amplitude, not angle"),
+    ({"axis": "x"}, "axis 'x' needs a amplitude above 0"),
+    ({**SONIC, "frequency": "0 Hz"}, "frequency"),
+    ({**SONIC, "frequency": "260 mm"}, "frequency"),
+    ({**SONIC, "amplitude": "-1 mm"}, "amplitude"),
+    ({**SONIC, "axis": "w"}, "axis"),
+    ({**SONIC, "duration": "5 ms"}, "duration 0.005 s is shorter than the rise and fall"),
+    ({**SONIC, "colour": "red"}, "colour: unknown key"),
+])
+def test_a_bad_sine_entry_is_refused_by_name(entry, message):
+    with pytest.raises(ParameterError, match="motion.sine") as caught:
+        build(Motion, {"sine": [entry]}, "motion.")
+    assert message in str(caught.value)
+    assert "\n" not in str(caught.value)
+
+
+def test_the_pivot_is_a_point():
+    with pytest.raises(ParameterError, match="pivot needs 3 coordinates"):
+        build(Motion, {"pivot": ["1 mm", "2 mm"]})
+
+
+def test_no_pose_terms_leave_the_motion_as_it_was():
+    case = load_case("orthogonal")
+    head = HeadMotion(3.0, 1.0, 0.2, RestingSlide(1.0))
+    assert with_pose(head, case.motion) is head
+
+
+def test_a_resting_slide_holds_the_head_and_lasts_its_periods(tmp_path):
+    prepared = prepare(load_case(_case_file(
+        tmp_path, 'profile = "none"\nperiod = "0.1 s"\nperiods = 2\n')))
+    motion = prepared.motion
+    assert motion.end_time == pytest.approx(motion.slide_start + 0.2, rel=1e-15)
+    assert motion.sliding(motion.slide_start + 0.05) == (0.0, 0.0, 0.0)
+
+
+def test_a_turn_about_the_pivot_carries_the_handle_on_its_circle(tmp_path):
+    # rz about a pivot 3 mm along x from the head's centre: the handle's node (the head
+    # frame's origin) stays 3 mm from the pivot's axis, at the angle the term gives
+    prepared = prepare(load_case(_case_file(tmp_path, (
+        'profile = "none"\nperiod = "0.02 s"\nperiods = 1\npivot = ["3 mm", "0 mm", "0 mm"]\n'
+        '[[motion.sine]]\naxis = "rz"\nangle = "30 deg"\nfrequency = "125 Hz"\n'
+        'ramp_cycles = 0\n')), ["solver.step_size='0.2 ms'"]))
+    motion, axis = prepared.motion, prepared.slide_axis
+    for t in np.linspace(motion.slide_start, motion.end_time, 41):
+        coordinates = handle_coordinates(motion, axis, t)
+        descent = motion.descent(t)[0]
+        angle = math.radians(30.0) * math.sin(2 * math.pi * 125.0 * (t - motion.slide_start))
+        assert coordinates[5] == pytest.approx(angle, abs=1e-15)
+        assert coordinates[2] == pytest.approx(-descent, abs=1e-12)  # in the plane
+        arm = coordinates[:2] - [3.0, 0.0]
+        # rounding only: sines and cosines of a 3 mm arm
+        assert np.hypot(*arm) == pytest.approx(3.0, abs=1e-12)
+        turned = [math.cos(math.pi + angle), math.sin(math.pi + angle)]
+        np.testing.assert_allclose(arm / 3.0, turned, rtol=0, atol=1e-12)
+
+
+def test_the_handles_velocity_and_acceleration_are_those_of_its_position(tmp_path):
+    prepared = prepare(load_case(_case_file(tmp_path, (
+        'amplitude = "2 mm"\nperiod = "0.05 s"\nperiods = 1\npivot = ["1 mm", "-2 mm", "4 mm"]\n'
+        '[[motion.sine]]\naxis = "rx"\nangle = "10 deg"\nfrequency = "60 Hz"\n'
+        '[[motion.sine]]\naxis = "y"\namplitude = "0.5 mm"\nfrequency = "90 Hz"\n'
+        'start = "0.01 s"\n')), ["solver.step_size='0.2 ms'"]))
+    motion, axis = prepared.motion, prepared.slide_axis
+    h = 1e-6  # s: central differences, truncation ~ h² x (2π 90 Hz)³ x 0.5 mm, rounding ~ 1e-16 / h
+    for t in motion.slide_start + np.array([0.004, 0.013, 0.027, 0.041]):
+        before, now, after = (handle_kinematics(motion, axis, t + d)[0] for d in (-h, 0, h))
+        _, velocity, acceleration = handle_kinematics(motion, axis, t)
+        np.testing.assert_allclose((after - before) / (2 * h), velocity, rtol=1e-6, atol=1e-6)
+        np.testing.assert_allclose((after - 2 * now + before) / h**2, acceleration,
+                                   rtol=1e-3, atol=5.0)  # mm/s² of ~1e5: rounding / h²
+
+
+def test_a_vibration_the_step_cannot_resolve_is_refused_before_anything_is_built(tmp_path):
+    case = load_case(_case_file(tmp_path, '[[motion.sine]]\naxis = "y"\namplitude = "0.3 mm"\n'
+                                          'frequency = "260 Hz"\n'))
+    with pytest.raises(ParameterError) as caught:
+        prepare(case)
+    assert str(caught.value) == (
+        "solver.step_size 2 ms does not resolve the motion: 20 steps per cycle of "
+        "motion.sine[0] (260 Hz) need a step of at most 0.1923 ms")
+    prepare(case.replace(solver=case.solver.replace(step_size=1 / (260 * 20))))
+
+
+def test_a_pose_csv_is_read_relative_to_the_case_file_and_checked(tmp_path):
+    (tmp_path / "pose.csv").write_text("time [ms],rz [deg]\n0,0\n10,5\n20,0\n")
+    prepared = prepare(load_case(_case_file(tmp_path, 'pose_csv = "pose.csv"\n'),
+                                 ["solver.step_size='0.2 ms'"]))
+    assert dict(prepared.inputs)["motion.pose_csv"] == prepared.motion.pose.table.digest
+    (tmp_path / "bad.csv").write_text("time [s],colour [mm]\n0,0\n1,1\n")
+    with pytest.raises(ParameterError, match="motion.pose_csv: pose CSV .*bad.csv.* has none"):
+        prepare(load_case(_case_file(tmp_path, 'pose_csv = "bad.csv"\n')))
