@@ -216,11 +216,13 @@ def surface_reach(case: Case, bristles, motion: HeadMotion, mesh: MeshSurface | 
     of it; it can touch if the surface's top (exubrush.world.surfaces.highest_near) rises above
     that depth anywhere within that distance of the root, at any of ``samples`` slide
     positions (on a mesh: anywhere near the root's straight path, an upper bound). On the
-    plane this is d < l + r.
+    plane this is d < l + r. A head with pose terms reaches everywhere (not sampled yet).
     """
     distance = case.motion.interaction_distance
     if case.surface.kind == "plane":
         return tuple(can_reach(b, distance) for b in bristles)
+    if motion.pose is not None:  # turned or shaken: every bristle may reach (an upper bound)
+        return (True,) * len(bristles)
     times = np.linspace(0.0, motion.end_time, samples)
     axis = SLIDE_AXES[case.motion.direction]
     shift = np.outer([motion.sliding(t)[0] for t in times], axis)
