@@ -128,6 +128,26 @@ MALFORMED = [
     ("csv", "time [s],slider_position [mm]\n0,0\n1,1\n0.5,2\n",
      "times must increase strictly, but sample 3 is at 0.5 s after 1 s"),
     ("csv", "time [s],slider_position [mm]\n0,0\n1,nan\n", "must hold finite numbers only"),
+    # pose terms
+    ("toml", '[[motion.sine]]\naxis = "y"\nfrequency = "260 Hz"\n',
+     "motion.sine[0]: axis 'y' needs a amplitude above 0"),
+    ("toml", '[[motion.sine]]\naxis = "y"\namplitude = "1 mm"\nfrequency = "inf Hz"\n',
+     "motion.sine[0].frequency"),
+    ("toml", '[[motion.sine]]\naxis = "y"\namplitude = "1 mm"\nfrequency = "nan Hz"\n',
+     "motion.sine[0].frequency"),
+    ("toml", '[[motion.sine]]\naxis = "y"\namplitude = "1 mm"\nfrequency = "2 s"\n',
+     "motion.sine[0].frequency"),
+    ("toml", '[[motion.sine]]\naxis = "y"\namplitude = "1 mm"\nfrequency = 260\n',
+     "motion.sine[0].frequency: 260 has no unit"),
+    ("toml", '[[motion.sine]]\naxis = "rz"\nangle = "200 deg"\nfrequency = "1 Hz"\n',
+     "motion.sine[0].angle"),
+    ("toml", '[solver]\nstep_size = "1e-9 s"\n[[motion.sine]]\naxis = "y"\n'
+     'amplitude = "1 mm"\nfrequency = "1e9 Hz"\n', "more than Exudyn can count"),
+    ("pose", "time [s],y [mm]\n0,0\n0.1,abc\n", "line 3, column 'y': 'abc' is not a number"),
+    ("pose", "time [s],y [deg]\n0,0\n0.1,1\n", "column 'y'"),
+    ("pose", "time [s],rz\n0,0\n0.1,1\n", "column 'rz' has no unit"),
+    ("pose", "time [s],rz [deg]\n0,0\n0.1,inf\n", "must hold finite numbers only"),
+    ("pose", "time [s],colour [mm]\n0,0\n0.1,1\n", "has none of the pose columns"),
     # the CASE argument
     ("case", "diagonal", "unknown case 'diagonal': use orthogonal, parallel"),
     ("case", "missing.toml", "case file 'missing.toml' does not exist"),
@@ -146,6 +166,11 @@ def _load(kind, given, tmp_path):
         path.write_text(given)
         return prepare(load_case("orthogonal", ["motion.profile='csv'",
                                                 f"motion.csv_file='{path}'"]))
+    if kind == "pose":
+        path = tmp_path / "pose.csv"
+        path.write_text(given)
+        return prepare(load_case("orthogonal", [f"motion.pose_csv='{path}'",
+                                                "solver.step_size='0.5 ms'"]))
     return prepare(load_case(given))
 
 
