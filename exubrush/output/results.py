@@ -36,6 +36,43 @@ CSV_COLUMNS = (
     ("head_height", "mm"),
 )
 
+# the head's wrench (HeadWrench), after CSV_COLUMNS: force [N] and moment about the head
+# frame's origin [N*mm] of the head on the surface, in the surface frame's axes, then in
+# the turned head frame's
+WRENCH_COLUMNS = tuple(
+    (f"{prefix}{quantity}_{axis}", unit)
+    for prefix in ("", "head_") for quantity, unit in (("force", "N"), ("moment", "N*mm"))
+    for axis in "xyz")
+
+
+@dataclass(frozen=True)
+class HeadWrench:
+    """Force [N] and moment [N·mm] of the head on the surface, each (n, 3): the moment about
+    the head frame's origin (the roots' surface at the head's centre, which the handle's
+    node carries), in the surface frame's axes (``force``, ``moment``) and in the head
+    frame's axes as the head turns (``head_force``, ``head_moment``; the same without pose
+    terms that turn it)."""
+
+    force: np.ndarray
+    moment: np.ndarray
+    head_force: np.ndarray
+    head_moment: np.ndarray
+
+    def columns(self) -> dict[str, np.ndarray]:
+        """The twelve columns of :data:`WRENCH_COLUMNS` by name."""
+        parts = (self.force, self.moment, self.head_force, self.head_moment)
+        return {name: part[:, k] for (name, _), (part, k) in zip(
+            WRENCH_COLUMNS, ((part, k) for part in parts for k in range(3)), strict=True)}
+
+    @classmethod
+    def from_columns(cls, series: dict[str, np.ndarray]) -> HeadWrench | None:
+        """The wrench of columns read back by name, None if the file has none of them
+        (a run of exubrush 0.13.0 or older)."""
+        if not all(name in series for name, _ in WRENCH_COLUMNS):
+            return None
+        stacked = np.column_stack([series.pop(name) for name, _ in WRENCH_COLUMNS])
+        return cls(*(stacked[:, 3 * k:3 * k + 3] for k in range(4)))
+
 
 @dataclass
 class Results:
@@ -64,6 +101,7 @@ class Results:
     tip_position: np.ndarray | None = None
     tip_force: np.ndarray | None = None
     metadata: dict = field(default_factory=dict)
+    wrench: HeadWrench | None = None
 
     @property
     def travelled_distance(self) -> np.ndarray:
@@ -86,6 +124,10 @@ class Results:
             "friction_coefficient": self.friction_coefficient,
             "head_height": self.head_height,
         }
+        if self.wrench is not None:
+            values.update(self.wrench.columns())
+            return {f"{name} [{unit}]": values[name]
+                    for name, unit in (*CSV_COLUMNS, *WRENCH_COLUMNS)}
         return {f"{name} [{unit}]": values[name] for name, unit in CSV_COLUMNS}
 
     @functools.cached_property
@@ -234,9 +276,11 @@ def read_results(directory: str | Path) -> Results:
     if not (directory / "forces.csv").is_file():
         raise ResultsError(f"{str(directory)!r} has no forces.csv (run status "
                            f"{metadata.get('status', 'unknown')!r}): nothing to read")
-    units = {name: unit for name, unit in CSV_COLUMNS if name in _SERIES}
+    units = {name: unit for name, unit in (*CSV_COLUMNS, *WRENCH_COLUMNS)
+             if name in _SERIES or (name, unit) in WRENCH_COLUMNS}
     try:
-        series = read_unit_table(directory / "forces.csv", units, "result file")
+        series = read_unit_table(directory / "forces.csv", units, "result file",
+                                 optional=tuple(name for name, _ in WRENCH_COLUMNS))
         shapes = _read_arrays(directory / "shapes.npz", {"time": 1, "nodes": 4},
                               {"coordinates": 2})
         tips = _read_arrays(directory / "tips.npz", {"position": 3, "force": 3})
@@ -256,7 +300,12 @@ def read_results(directory: str | Path) -> Results:
                            f"{tips['position'].shape} and {tips['force'].shape} do not fit "
                            f"{steps} times of forces.csv: the file is damaged or of "
                            "another run")
-    return Results(**series, shape_time=shapes["time"], shape_nodes=nodes,
+    wrench = HeadWrench.from_columns(series)
+    for name, _ in WRENCH_COLUMNS:  # some but not all of them: not exubrush's file
+        if series.pop(name, None) is not None:
+            raise ResultsError(f"{str(directory / 'forces.csv')!r} has some of the head's "
+                               f"force and moment columns but not all{REMAKE}")
+    return Results(**series, wrench=wrench, shape_time=shapes["time"], shape_nodes=nodes,
                    shape_coordinates=shapes.get("coordinates"),
                    tip_position=None if tips is None else tips["position"],
                    tip_force=None if tips is None else tips["force"], metadata=metadata)

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from exubrush.output.results import Results
+from exubrush.output.results import HeadWrench, Results
 from exubrush.parameters.fields import to_plain
 from exubrush.run.prepared import PreparedCase
 from exubrush.run.solution import GroupSolution, SolverStatistics
@@ -23,7 +23,14 @@ from exubrush.run.solution_files import head_coordinates
 from exubrush.util.exudyn_build import build_in_use
 from exubrush.util.provenance import code_identity, package_version
 from exubrush.util.references import run_references
-from exubrush.world.kinematics import handle_history, head_force
+from exubrush.world.kinematics import (
+    handle_angles,
+    handle_history,
+    head_force,
+    head_moment,
+    in_head_frame,
+)
+from exubrush.world.pose import rotation_matrix
 
 
 @dataclass(frozen=True)
@@ -64,6 +71,13 @@ def assemble_results(prepared: PreparedCase, solutions: Sequence[GroupSolution |
     force = head_force([s.reaction[:n] for s in ran] if n else [],
                        [s.handle_mass for s in ran], acceleration)
     handle_position = position + np.array([0.0, 0.0, prepared.start_height])
+    angles, rates, turning = handle_angles(prepared.motion, t)
+    wrench = None
+    if n and all(s.drive_moment is not None for s in ran):  # none in 0.13.0's checkpoints
+        moment = head_moment([s.drive_moment[:n] for s in ran],
+                             [np.array(s.handle_inertia) for s in ran], angles, rates, turning)
+        wrench = HeadWrench(force=force, moment=moment, head_force=in_head_frame(force, angles),
+                            head_moment=in_head_frame(moment, angles))
     nodes_per_bristle = case.model.segments if case.model.kind == "dfm" else 1
     # the groups' bristles joined, then put back in the head's order (groups that can
     # touch each other need not be contiguous ranges)
@@ -78,8 +92,11 @@ def assemble_results(prepared: PreparedCase, solutions: Sequence[GroupSolution |
     stride = max(1, round(case.output.shape_interval / case.output.interval))
     rows = np.arange(0, n, stride)
     roots = np.array([b.root for b in prepared.bristles])
+    # the roots turn with the head about the handle's node (A r, exubrush.world.pose)
+    turned = np.array([roots @ rotation_matrix(theta).T for theta in angles[rows]]) if (
+        prepared.motion.pose is not None) else roots[None, :, :]
     shape_nodes = np.concatenate(
-        [(handle_position[rows][:, None, :] + roots[None, :, :])[:, :, None, :], nodes[rows]],
+        [(handle_position[rows][:, None, :] + turned)[:, :, None, :], nodes[rows]],
         axis=2,
     )
     shape_coordinates = None
@@ -118,6 +135,7 @@ def assemble_results(prepared: PreparedCase, solutions: Sequence[GroupSolution |
         tip_position=nodes[:, :, -1, :],
         tip_force=tip_force,
         metadata=metadata,
+        wrench=wrench,
     )
 
 

@@ -239,7 +239,7 @@ class RunDirectory:
 
     def _read_group(self, file: Path) -> GroupSolution:
         arrays = read_npz(file, {"scalars": None, "time": 1, "reaction": 2, "nodes": 4,
-                                 "tip_force": 3}, {"coordinates": 2})
+                                 "tip_force": 3}, {"coordinates": 2, "drive_moment": 2})
         if arrays["scalars"].dtype.kind != "U" or arrays["scalars"].ndim != 0:
             raise GroupFileError(f"{str(file)!r}: its 'scalars' are not one text")
         try:
@@ -250,7 +250,9 @@ class RunDirectory:
             raise GroupFileError(f"{str(file)!r}: its 'scalars' are not those of a finished "
                                  "group of this exubrush")
         steps, bristles = solution.time.size, self.group_sizes[self._group_index(file)]
+        moment = solution.drive_moment
         if not (solution.reaction.shape == (steps, 3)
+                and (moment is None or moment.shape == (steps, 3))
                 and solution.nodes.shape[:2] == (steps, bristles)
                 and solution.nodes.shape[3] == 3
                 and solution.tip_force.shape == (steps, bristles, 3)):
@@ -271,8 +273,14 @@ class RunDirectory:
 def _plain_scalars(solution: GroupSolution) -> bool:
     """Whether a group read back has the scalar types it was written with."""
     numbers = [getattr(solution, f.name) for f in dataclasses.fields(solution)
-               if f.name not in (*solution.ARRAYS, "statistics", "completed", "message")]
+               if f.name not in (*solution.ARRAYS, "statistics", "completed", "message",
+                                 "handle_inertia")]
     numbers += list(dataclasses.astuple(solution.statistics))
+    inertia = solution.handle_inertia
+    if not (isinstance(inertia, list) and len(inertia) == 3
+            and all(isinstance(row, list) and len(row) == 3 for row in inertia)):
+        return False
+    numbers += [n for row in inertia for n in row]
     return (isinstance(solution.completed, bool) and isinstance(solution.message, str)
             and all(isinstance(n, int | float) and not isinstance(n, bool) for n in numbers))
 

@@ -96,6 +96,10 @@ class Scene:
     handle_mass: float
     bristles: tuple[BristleGeometry, ...]
     drive_sensors: list = field(default_factory=list)
+    # the drive's generalised forces on the handle's Tait-Bryan angles [N·mm]
+    drive_moment_sensors: list = field(default_factory=list)
+    # the handle's inertia about its centre (its node), body frame [t·mm²]
+    handle_inertia: np.ndarray = field(default_factory=lambda: np.zeros((3, 3)))
     node_sensors: list = field(default_factory=list)
     contacts: list = field(default_factory=list)
     contact_sensors: list[ContactSensor] = field(default_factory=list)
@@ -153,12 +157,10 @@ def _add_drive(scene: Scene, handle_node) -> None:
         )
         if along or down or posed:
             moving.append((constraint, along, down))
-        if axis < 3:
-            scene.drive_sensors.append(
-                mbs.AddSensor(eii.SensorObject(objectNumber=constraint, storeInternal=True,
-                                               writeToFile=False,
-                                               outputVariableType=exu.OutputVariableType.Force))
-            )
+        sensors = scene.drive_sensors if axis < 3 else scene.drive_moment_sensors
+        sensors.append(mbs.AddSensor(eii.SensorObject(
+            objectNumber=constraint, storeInternal=True, writeToFile=False,
+            outputVariableType=exu.OutputVariableType.Force)))
 
     last = [None] * len(moving)
 
@@ -332,7 +334,7 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
         graphicsDataList=handle_drawing, returnDict=True,
     )
     scene = Scene(SC, mbs, prepared.motion, prepared.slide_axis, handle_inertia.Mass(),
-                  bristles, ground=ground)
+                  bristles, ground=ground, handle_inertia=handle_inertia.InertiaCOM())
     _add_drive(scene, handle["nodeNumber"])
     surface = surface_marker(mbs, ground, case.surface)
     laws = {}

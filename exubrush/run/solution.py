@@ -67,6 +67,11 @@ class GroupSolution:
         samples (0 without contact between bristles).
     bristle_overlap_max : float
         Deepest overlap of two bristles seen at an output sample [mm].
+    drive_moment : ndarray (n, 3) or None
+        The drive's reaction on the handle's Tait-Bryan angles [N·mm]
+        (exubrush.world.kinematics.head_moment); None in a checkpoint of exubrush 0.13.0.
+    handle_inertia : list
+        The handle's inertia about its centre, body frame, as nested lists [t·mm²].
     """
 
     time: np.ndarray
@@ -83,8 +88,10 @@ class GroupSolution:
     bristle_contacts_max: float = 0.0
     bristle_contacts_mean: float = 0.0
     bristle_overlap_max: float = 0.0
+    drive_moment: np.ndarray | None = None
+    handle_inertia: list = dataclasses.field(default_factory=lambda: [[0.0] * 3] * 3)
 
-    ARRAYS = ("time", "reaction", "nodes", "tip_force", "coordinates")
+    ARRAYS = ("time", "reaction", "nodes", "tip_force", "coordinates", "drive_moment")
 
     @property
     def interrupted(self) -> bool:

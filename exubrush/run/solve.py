@@ -125,6 +125,7 @@ def solve_group(prepared: PreparedCase, selection: tuple[int, ...],
         return np.asarray(scene.mbs.GetSensorStoredData(sensor))
 
     drive = [stored(s) for s in scene.drive_sensors]
+    turning = [stored(s) for s in scene.drive_moment_sensors]
     histories = [[stored(s) for s in sensors] for sensors in scene.node_sensors]
     # (force rows, frame rows or None) of each of scene.contact_sensors
     contact_rows = [(stored(s.force), None if s.frame is None else stored(s.frame))
@@ -137,7 +138,7 @@ def solve_group(prepared: PreparedCase, selection: tuple[int, ...],
     # this, a worker's memory grew by the stored sensor data of every group it solved
     # (0.9 MB per default bristle and 2 periods, docs/decisions/0008)
     scene.system_container.Reset()
-    n = min(len(h) for h in [*drive, *(h for nodes in histories for h in nodes),
+    n = min(len(h) for h in [*drive, *turning, *(h for nodes in histories for h in nodes),
                              *(rows for rows, _ in contact_rows)])
     nodes = np.array([[h[:n, 1:4] for h in bristle] for bristle in histories])
     tip_force = np.zeros((len(histories), n, 3))
@@ -155,6 +156,8 @@ def solve_group(prepared: PreparedCase, selection: tuple[int, ...],
                               else "normal force beyond the physical bound")
     recorded = drive[0][:n, 0]
     grid, reaction = on_output_grid(recorded, reaction[:n], case.output.interval)
+    moment = np.column_stack([d[:n, 1] for d in turning]) if n else np.zeros((0, 3))
+    _, moment = on_output_grid(recorded, moment, case.output.interval)
     _, nodes = on_output_grid(recorded, nodes[:, :, :n].transpose(2, 0, 1, 3),
                               case.output.interval)
     _, tip_force = on_output_grid(recorded, tip_force[:, :n].transpose(1, 0, 2),
@@ -166,6 +169,8 @@ def solve_group(prepared: PreparedCase, selection: tuple[int, ...],
     return GroupSolution(
         time=grid,
         reaction=reaction,
+        drive_moment=moment,
+        handle_inertia=scene.handle_inertia.tolist(),
         nodes=nodes,
         tip_force=tip_force,
         coordinates=coordinates,

@@ -12,6 +12,12 @@ from collections.abc import Sequence
 import numpy as np
 
 from exubrush.world.motion import HeadMotion
+from exubrush.world.pose import (
+    angular_acceleration,
+    angular_velocity,
+    g_matrix,
+    rotation_matrix,
+)
 
 SLIDE_AXES = {"orthogonal": np.array([0.0, 1.0, 0.0]), "parallel": np.array([1.0, 0.0, 0.0])}
 DOWN = np.array([0.0, 0.0, -1.0])  # the approach: towards the surface z = 0
@@ -71,3 +77,54 @@ def head_force(reactions: Sequence[np.ndarray], handle_masses: Sequence[float],
     # blocks a reduction
     total = sum(reactions, np.zeros_like(acceleration))
     return -total - sum(handle_masses) * acceleration
+
+
+def handle_angles(motion: HeadMotion, times: np.ndarray):
+    """The head's Tait-Bryan angles [rad], their rates [rad/s] and accelerations [rad/s²]
+    at every time of ``times``: three (n, 3) arrays (zero without pose terms)."""
+    if motion.pose is None:
+        zero = np.zeros((len(times), 3))
+        return zero, zero.copy(), zero.copy()
+    values = np.array([[part[3:] for part in motion.pose.evaluate(t)] for t in times])
+    return values[:, 0], values[:, 1], values[:, 2]
+
+
+def head_moment(moment_reactions: Sequence[np.ndarray], handle_inertias: Sequence[np.ndarray],
+                angles: np.ndarray, rates: np.ndarray,
+                accelerations: np.ndarray) -> np.ndarray:
+    """Moment of the head on the surface about the handle's node (the head frame's origin,
+    the roots' surface at the head's centre) [N·mm], (n, 3), surface frame.
+
+    The drive's reaction on the handle's rotation coordinates is a generalised force λ,
+    conjugate to the Tait-Bryan angles θ: a torque τ does the work of λ where Gᵀ τ = λ
+    (ω = G θ̇, exubrush.world.pose). As for :func:`head_force`, the head's moment is
+    −Σ G⁻ᵀ λ minus the handles' own rate of angular momentum, I α + ω × I ω with
+    I = A I_body Aᵀ about each handle's centre of mass (its node).
+
+    Parameters
+    ----------
+    moment_reactions : sequence of (n, 3) arrays
+        λ of each solved group's rotation coordinates [N·mm] on the same time grid.
+    handle_inertias : sequence of (3, 3) arrays
+        Each group's handle inertia about its centre of mass, body frame [t·mm²].
+    angles, rates, accelerations : (n, 3) arrays
+        θ [rad], θ̇ [rad/s], θ̈ [rad/s²] of the head.
+    """
+    total = sum(moment_reactions, np.zeros_like(angles))
+    body = sum(handle_inertias, np.zeros((3, 3)))
+    moment = np.empty_like(angles)
+    for k, (theta, rate, acceleration) in enumerate(zip(angles, rates, accelerations,
+                                                        strict=True)):
+        turn = rotation_matrix(theta)
+        inertia = turn @ body @ turn.T
+        omega = angular_velocity(theta, rate)
+        alpha = angular_acceleration(theta, rate, acceleration)
+        moment[k] = (-np.linalg.solve(g_matrix(theta).T, total[k])
+                     - inertia @ alpha - np.cross(omega, inertia @ omega))
+    return moment
+
+
+def in_head_frame(vectors: np.ndarray, angles: np.ndarray) -> np.ndarray:
+    """Vectors (n, 3) given in the surface frame, in the turned head frame's axes: Aᵀ v."""
+    return np.array([rotation_matrix(theta).T @ v for v, theta in zip(vectors, angles,
+                                                                       strict=True)])

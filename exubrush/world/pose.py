@@ -57,7 +57,7 @@ def rotation_matrix(angles: Sequence[float] | np.ndarray) -> np.ndarray:
     return rot_x @ rot_y @ rot_z
 
 
-def _g_matrix(angles: Sequence[float] | np.ndarray) -> np.ndarray:
+def g_matrix(angles: Sequence[float] | np.ndarray) -> np.ndarray:
     """G(θ) (3, 3), ω = G θ̇ in the surface frame."""
     (cx, cy, _), (sx, sy, _) = np.cos(angles), np.sin(angles)
     return np.array([[1.0, 0.0, sy], [0.0, cx, -cy * sx], [0.0, sx, cx * cy]])
@@ -67,7 +67,7 @@ def angular_velocity(angles: Sequence[float] | np.ndarray,
                      rates: Sequence[float] | np.ndarray) -> np.ndarray:
     """Angular velocity ω = G(θ) θ̇ [rad/s] (3,) in the surface frame, of angles θ [rad]
     changing at rates θ̇ [rad/s]."""
-    return _g_matrix(angles) @ np.asarray(rates, dtype=float)
+    return g_matrix(angles) @ np.asarray(rates, dtype=float)
 
 
 def angular_acceleration(angles: Sequence[float] | np.ndarray,
@@ -82,7 +82,7 @@ def angular_acceleration(angles: Sequence[float] | np.ndarray,
         [0.0, -sx * dx, sy * sx * dy - cy * cx * dx],
         [0.0, cx * dx, -sx * cy * dx - cx * sy * dy],
     ])
-    return _g_matrix(angles) @ np.asarray(accelerations, dtype=float) + g_dot @ theta_dot
+    return g_matrix(angles) @ np.asarray(accelerations, dtype=float) + g_dot @ theta_dot
 
 
 @dataclass(frozen=True)
