@@ -69,7 +69,7 @@ class GroupSolution:
         Deepest overlap of two bristles seen at an output sample [mm].
     drive_moment : ndarray (n, 3) or None
         The drive's reaction on the handle's Tait-Bryan angles [N·mm]
-        (exubrush.world.kinematics.head_moment); None in a checkpoint of exubrush 0.13.0.
+        (exubrush.world.kinematics.head_moment); None where a group file lacks it.
     handle_inertia : list
         The handle's inertia about its centre, body frame, as nested lists [t·mm²].
     """
