@@ -84,7 +84,8 @@ def main() -> None:
               help="Processes of the local pool or local Dask cluster [default: every core].")
 def run(case, model, segments, periods, out, overrides, overwrite, quiet, preset, viewer,
         scheduler, workers):
-    """Simulate CASE (orthogonal, parallel or a TOML case file) and save the results.
+    """Simulate CASE (a built-in case, e.g. orthogonal, tuft or robot, or a TOML case file)
+    and save the results.
 
     Finished bristles are kept in OUT/.checkpoint while the run goes on: after Ctrl-C, a
     kill or a crash, the same command resumes where it stopped.

@@ -9,8 +9,9 @@ from __future__ import annotations
 
 import math
 from dataclasses import replace
+from pathlib import Path
 
-from exubrush.parameters.case import Case, Surface, Tuft
+from exubrush.parameters.case import Case, SineMotion, Surface, Tuft
 from exubrush.parameters.fields import build
 
 
@@ -84,6 +85,46 @@ def manual_brush_case() -> Case:
                    motion=replace(base.motion, periods=1.0))
 
 
+# an oscillating-rotating round head (docs/motion.md, "The powered-brush cases", gives the
+# sources and assumptions): the `tuft` case's tufts in rings on an 11 mm disc
+ROUND_HEAD_RINGS = ((0.0, 1), (2.0, 6), (3.9, 12))  # (radius [mm], tufts) of each ring
+OSCILLATION = (7600.0 / 60.0, math.radians(20.0))  # Hz, amplitude [rad]: ±20° at 7,600/min
+# 0.39 ms: within the 20 steps per cycle (0.395 ms) that exubrush.run.budget asks for
+STEP = 0.39e-3  # s
+
+
+def oscillating_rotating_case() -> Case:
+    """An oscillating-rotating round head: 19 tufts of the `tuft` case (37 nylon
+    filaments of 0.2 mm in 1.6 mm holes) in a centre tuft and rings of 6 and 12 on an 11
+    mm disc, pressed on the plane at d = 8.4 mm and turned ±20° about its normal at 7,600
+    oscillations a minute for 0.5 s after the approach (no stroke)."""
+    base = tuft_case()
+    tufts = tuple(
+        Tuft(name=f"ring{ring}-{k + 1}", x=radius * math.cos(2 * math.pi * k / count),
+             y=radius * math.sin(2 * math.pi * k / count))
+        for ring, (radius, count) in enumerate(ROUND_HEAD_RINGS) for k in range(count))
+    frequency, angle = OSCILLATION
+    turn = SineMotion().replace(axis="rz", amplitude=0.0, angle=angle, frequency=frequency)
+    return base.replace(
+        name="oscillating-rotating",
+        head=base.head.replace(tufts=tufts),
+        motion=base.motion.replace(profile="none", period=0.1, periods=5.0, sine=(turn,)),
+        solver=base.solver.replace(step_size=STEP),
+        output=base.output.replace(interval=1e-3, shape_interval=0.01),
+    )
+
+
+def robot_case() -> Case:
+    """The paper's head moved by a robot arm along a rectangle of linear moves with
+    right-angle turns (exubrush/data/robot-path.csv, exubrush's illustration: 10 mm/s,
+    8 mm x 10 mm, a stop at each corner), pressed on the plane at the paper's d."""
+    base = orthogonal_case()
+    path = Path(__file__).parents[1] / "data" / "robot-path.csv"
+    return base.replace(name="robot", motion=base.motion.replace(
+        profile="none", period=4.0, periods=1.0, pose_csv=str(path)))
+
+
 BUILT_IN_CASES = {"orthogonal": orthogonal_case, "parallel": parallel_case,
                   "interdental": interdental_case, "crown": crown_case, "tuft": tuft_case,
-                  "manual-brush": manual_brush_case}
+                  "manual-brush": manual_brush_case,
+                  "oscillating-rotating": oscillating_rotating_case, "robot": robot_case}

@@ -1,0 +1,49 @@
+"""The built-in cases of heads that turn or follow a path (docs/motion.md, "The
+powered-brush cases"): they load, survive `exubrush case` as TOML, and their heads and
+motions are what the docs say."""
+
+import math
+
+import numpy as np
+import pytest
+
+from exubrush.parameters.fields import to_toml
+from exubrush.parameters.io import load_case
+from exubrush.run.prepared import prepare
+
+
+@pytest.mark.parametrize("name", ["oscillating-rotating", "robot"])
+def test_the_case_survives_its_toml(name, tmp_path):
+    case = load_case(name)
+    path = tmp_path / "case.toml"
+    path.write_text(to_toml(case))
+    assert load_case(str(path)) == case
+
+
+def test_the_round_head_fits_its_disc_and_turns_about_its_centre():
+    prepared = prepare(load_case("oscillating-rotating"))  # refuses overlapping tufts
+    roots = np.array([b.root[:2] for b in prepared.bristles])
+    assert len(roots) == 19 * 37
+    # every filament (0.2 mm) inside the 11 mm disc
+    assert np.hypot(*roots.T).max() + 0.1 <= 5.5
+    (turn,) = prepared.case.motion.sine
+    assert (turn.axis, prepared.case.motion.pivot) == ("rz", (0.0, 0.0, 0.0))
+    # oscillations a minute; a built-in case is read through its TOML text (12 digits)
+    assert turn.frequency * 60 == pytest.approx(7600.0, rel=1e-11)
+    assert math.degrees(turn.angle) == pytest.approx(20.0, rel=1e-11)
+    # the step resolves the oscillation (exubrush.run.budget: 20 steps a cycle)
+    assert prepared.case.solver.step_size <= 1.0 / (20 * turn.frequency)
+
+
+def test_the_robot_follows_its_rectangle_and_stops_at_each_corner():
+    prepared = prepare(load_case("robot"))
+    pose, start = prepared.motion.pose, prepared.motion.slide_start
+    corners = {0.2: (0, 0), 1.2: (0, 10), 2.0: (8, 10), 3.0: (8, 0), 3.8: (0, 0)}
+    for t, (x, y) in corners.items():
+        position, rate, _ = pose.evaluate(start + t)
+        # the table's samples themselves, to the 4 decimals the file holds
+        np.testing.assert_allclose(position[:2], [x, y], atol=1e-9)
+        np.testing.assert_allclose(rate, 0.0, atol=1e-9)  # at rest at a corner
+    _, rate, _ = pose.evaluate(start + 0.7)
+    np.testing.assert_allclose(rate[:2], [0.0, 10.0], rtol=1e-9, atol=1e-9)  # mid-leg: 10 mm/s
+    assert prepared.motion.end_time == pytest.approx(start + 4.0, rel=1e-12)
