@@ -22,16 +22,19 @@ def figure(rows: int, columns: int = 1, **options):
 
 
 def plot_forces(results, target) -> None:
-    """F_n, F_t and μ_eff against travelled distance, written as PNG to ``target``."""
+    """F_n, F_t and μ_eff against travelled distance (against time where the head does
+    not slide, motion.profile "none"), written as PNG to ``target``."""
     distance = results.travelled_distance
+    sliding = len(distance) > 0 and distance[-1] > 0.0
+    x = distance if sliding else results.time
     fig, axes = figure(3, 1, figsize=(8, 8), sharex=True)
-    axes[0].plot(distance, results.normal_force, lw=0.8)
+    axes[0].plot(x, results.normal_force, lw=0.8)
     axes[0].set_ylabel("normal force [N]")
-    axes[1].plot(distance, results.tangential_force, lw=0.8, color="tab:orange")
-    axes[1].set_ylabel("tangential force [N]")
-    axes[2].plot(distance, results.friction_coefficient, lw=0.8, color="tab:green")
+    axes[1].plot(x, results.tangential_force, lw=0.8, color="tab:orange")
+    axes[1].set_ylabel("tangential force [N]" if sliding else "force along the slide axis [N]")
+    axes[2].plot(x, results.friction_coefficient, lw=0.8, color="tab:green")
     axes[2].set_ylabel("|F_t| / F_n [-]")
-    axes[2].set_xlabel("travelled distance [mm]")
+    axes[2].set_xlabel("travelled distance [mm]" if sliding else "time [s]")
     meta = results.metadata
     status = meta.get("status", "completed")
     partial = "" if status == "completed" else f" - PARTIAL, {status}"
@@ -172,3 +175,32 @@ def plot_cleaning(results, summary: dict, contacts, target) -> None:
                  f"{surface.kind} (simulation)", fontsize=10)
     fig.subplots_adjust(left=0.07, right=0.98, bottom=0.08, top=0.92, wspace=0.28, hspace=0.32)
     fig.savefig(target, format="png", dpi=110)
+
+
+def plot_vibration(results, entries: list[dict], amplitudes: list, target) -> None:
+    """For each sine pose term that was measured, every tip's amplitude against its
+    distance from the pivot's axis (a turn) or from the head's centre (a shake), with the
+    head's own amplitude as a line; PNG to ``target`` (exubrush.output.vibration)."""
+    measured = [(e, a) for e, a in zip(entries, amplitudes, strict=True) if a is not None]
+    fig, axes = figure(1, len(measured), figsize=(5.5 * len(measured), 4.5), squeeze=False)
+    case = results.case()
+    roots = np.array([b.root for b in head_bristles(case.head)])
+    pivot = np.asarray(case.motion.pivot)
+    for axis, (entry, amplitude) in zip(axes[0], measured, strict=True):
+        if entry["unit"] == "rad":
+            u, v = {"rx": (1, 2), "ry": (2, 0), "rz": (0, 1)}[entry["axis"]]
+            distance = np.hypot(roots[:, u] - pivot[u], roots[:, v] - pivot[v])
+            label = f"root's distance from the {entry['axis'][1]} axis through the pivot [mm]"
+            scale, unit = 180.0 / np.pi, "deg"
+        else:
+            distance = np.hypot(roots[:, 0], roots[:, 1])
+            label, scale, unit = "root's distance from the head's centre [mm]", 1.0, "mm"
+        axis.plot(distance, amplitude * scale, ".", ms=3, label="tips")
+        axis.axhline(entry["head_amplitude"] * scale, color="tab:red", lw=1.0, label="head")
+        axis.set_xlabel(label)
+        axis.set_ylabel(f"amplitude at {entry['frequency_Hz']:.4g} Hz [{unit}]")
+        axis.set_title(f"{entry['term']} ({entry['axis']}): tips / head "
+                       f"{entry['amplification_median']:.3g} (median)", fontsize=9)
+        axis.legend(fontsize=8)
+    fig.subplots_adjust(left=0.1, right=0.97, bottom=0.14, top=0.9, wspace=0.3)
+    fig.savefig(target, format="png", dpi=100)

@@ -19,13 +19,15 @@ import numpy as np
 from exubrush.models.geometry import head_bristles
 from exubrush.output.cleaning import TipContacts, cleaning_summary, part_names, touching_geometry
 from exubrush.output.metrics import friction_coefficient, travelled_distance
+from exubrush.output.vibration import vibration_summary
 from exubrush.parameters.case import Case
 from exubrush.parameters.fields import ParameterError, build
 from exubrush.util.files import atomic_file, read_npz, write_csv
+from exubrush.world.kinematics import SLIDE_AXES
 from exubrush.world.mesh import MeshError, read_mesh
 
 RESULT_FILES = ("forces.csv", "shapes.npz", "forces.png", "tips.npz", "summary.json",
-                "cleaning.png")
+                "cleaning.png", "vibration.png")
 CSV_COLUMNS = (
     ("time", "s"),
     ("slider_position", "mm"),
@@ -154,6 +156,19 @@ class Results:
                                 self.tip_position, self.tip_force, self._tip_radii(case),
                                 contacts=contacts)
 
+    def vibration(self) -> tuple[list[dict], list]:
+        """The tips' amplitude against the head's for each sine pose term of the run
+        (exubrush.output.vibration.vibration_summary), and every tip's amplitude per term;
+        empty without such terms or tip data."""
+        case = self.case()
+        if not case.motion.sine or self.tip_position is None or len(self.time) == 0:
+            return [], []
+        axis = SLIDE_AXES[case.motion.direction]
+        pivot_track = (np.asarray(case.motion.pivot) + self.head_height[:, None] * [0, 0, 1]
+                       + self.slider_position[:, None] * axis)
+        start = self.metadata.get("derived", {}).get("slide_start_s", 0.0)
+        return vibration_summary(case, start, self.time, self.tip_position, pivot_track)
+
     def cleaning(self) -> dict | None:
         """The cleaning metrics of the run (exubrush.output.cleaning.cleaning_summary), computed
         once; None without tip data or when the run's mesh file is gone."""
@@ -195,12 +210,16 @@ class Results:
             extra = {} if self.shape_coordinates is None else {
                 "coordinates": self.shape_coordinates}
             np.savez_compressed(handle, time=self.shape_time, nodes=self.shape_nodes, **extra)
-        from exubrush.output.plotting import plot_cleaning, plot_forces  # matplotlib when drawn
+        from exubrush.output.plotting import (  # matplotlib when drawn
+            plot_cleaning,
+            plot_forces,
+            plot_vibration,
+        )
 
         with atomic_file(directory / "forces.png", "wb") as handle:
             plot_forces(self, handle)
         summary, contacts = self.cleaning(), self.tip_contacts
-        for name in ("tips.npz", "summary.json", "cleaning.png"):
+        for name in ("tips.npz", "summary.json", "cleaning.png", "vibration.png"):
             (directory / name).unlink(missing_ok=True)
         if summary is not None:
             with atomic_file(directory / "tips.npz", "wb") as handle:
@@ -208,11 +227,16 @@ class Results:
                                     force=self.tip_force, in_contact=contacts.touching,
                                     part=np.where(contacts.touching, contacts.parts, -1),
                                     part_names=np.array(part_names(self.case().surface)))
+            vibration, amplitudes = self.vibration()
+            extra = {"vibration": vibration} if vibration else {}
             with atomic_file(directory / "summary.json", "w") as handle:
                 json.dump({"data_origin": self.metadata.get("data_origin", ""),
-                           "cleaning": summary}, handle, indent=2)
+                           "cleaning": summary, **extra}, handle, indent=2)
             with atomic_file(directory / "cleaning.png", "wb") as handle:
                 plot_cleaning(self, summary, contacts, handle)
+            if any(a is not None for a in amplitudes):
+                with atomic_file(directory / "vibration.png", "wb") as handle:
+                    plot_vibration(self, vibration, amplitudes, handle)
         self._save_metadata(directory)
         return directory
 
