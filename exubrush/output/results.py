@@ -19,6 +19,7 @@ import numpy as np
 from exubrush.models.geometry import head_bristles
 from exubrush.output.cleaning import TipContacts, cleaning_summary, part_names, touching_geometry
 from exubrush.output.metrics import friction_coefficient, travelled_distance
+from exubrush.output.tufts import tuft_columns, tuft_forces
 from exubrush.output.vibration import vibration_summary
 from exubrush.parameters.case import Case
 from exubrush.parameters.fields import ParameterError, build
@@ -27,7 +28,7 @@ from exubrush.world.kinematics import SLIDE_AXES
 from exubrush.world.mesh import MeshError, read_mesh
 
 RESULT_FILES = ("forces.csv", "shapes.npz", "forces.png", "tips.npz", "summary.json",
-                "cleaning.png", "vibration.png")
+                "cleaning.png", "vibration.png", "tufts.csv")
 CSV_COLUMNS = (
     ("time", "s"),
     ("slider_position", "mm"),
@@ -169,6 +170,17 @@ class Results:
         start = self.metadata.get("derived", {}).get("slide_start_s", 0.0)
         return vibration_summary(case, start, self.time, self.tip_position, pivot_track)
 
+    def tuft_columns(self) -> dict[str, np.ndarray]:
+        """tufts.csv's columns (exubrush.output.tufts): each tuft's force on the surface
+        [N], surface frame; empty unless the head is made of tufts and tips were kept."""
+        case = self.case()
+        if case.head.layout != "tufts" or self.tip_force is None or len(self.time) == 0:
+            return {}
+        names = [t.name or f"tufts[{i}]" for i, t in enumerate(case.head.tufts)]
+        forces = tuft_forces(self.tip_force, [b.tuft for b in head_bristles(case.head)],
+                             len(names))
+        return tuft_columns(names, self.time, forces)
+
     def cleaning(self) -> dict | None:
         """The cleaning metrics of the run (exubrush.output.cleaning.cleaning_summary), computed
         once; None without tip data or when the run's mesh file is gone."""
@@ -219,7 +231,7 @@ class Results:
         with atomic_file(directory / "forces.png", "wb") as handle:
             plot_forces(self, handle)
         summary, contacts = self.cleaning(), self.tip_contacts
-        for name in ("tips.npz", "summary.json", "cleaning.png", "vibration.png"):
+        for name in ("tips.npz", "summary.json", "cleaning.png", "vibration.png", "tufts.csv"):
             (directory / name).unlink(missing_ok=True)
         if summary is not None:
             with atomic_file(directory / "tips.npz", "wb") as handle:
@@ -234,6 +246,10 @@ class Results:
                            "cleaning": summary, **extra}, handle, indent=2)
             with atomic_file(directory / "cleaning.png", "wb") as handle:
                 plot_cleaning(self, summary, contacts, handle)
+            tufts = self.tuft_columns()
+            if tufts:
+                write_csv(directory / "tufts.csv", list(tufts),
+                          zip(*tufts.values(), strict=True))
             if any(a is not None for a in amplitudes):
                 with atomic_file(directory / "vibration.png", "wb") as handle:
                     plot_vibration(self, vibration, amplitudes, handle)

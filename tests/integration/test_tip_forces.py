@@ -91,3 +91,21 @@ def test_a_mesh_surface_has_graphics_for_the_viewer(tmp_path):
     scene = build_scene(prepared, (0,), drawn=True)
     assert scene.mbs.GetObject(0)["VgraphicsData"]
     assert len(scene.tangent_planes) == 1  # the tip reaches the crown: one moving frame
+
+
+@pytest.mark.slow  # an Exudyn run of 14 filaments
+def test_the_tufts_forces_add_up_to_the_head_force(tmp_path):
+    path = tmp_path / "two-tufts.toml"
+    path.write_text('[head]\nlayout = "tufts"\n[[head.tufts]]\nname = "left"\nx = "-1 mm"\n'
+                    'filaments = 7\ndiameter = "0.7 mm"\n[[head.tufts]]\nname = "right"\n'
+                    'x = "1 mm"\nfilaments = 7\ndiameter = "0.7 mm"\n'
+                    '[motion]\ninteraction_distance = "8.4 mm"\nperiods = 0.02\n')
+    results = simulate(load_case(str(path)), progress=False, workers=1)
+    results.save(tmp_path / "run")
+    table = np.genfromtxt(tmp_path / "run" / "tufts.csv", delimiter=",", names=True)
+    assert table.dtype.names[1:4] == ("leftforce_x_N", "leftforce_y_N", "leftforce_z_N")
+    total_z = table["leftforce_z_N"] + table["rightforce_z_N"]
+    # the head's force less the filaments' own inertia: slow brushing, well under 1 % of it
+    np.testing.assert_allclose(-total_z, results.normal_force, rtol=0,
+                               atol=0.01 * results.normal_force.max())
+    assert results.normal_force.max() > 0.01  # they pressed: a test of something
