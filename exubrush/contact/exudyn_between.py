@@ -176,7 +176,7 @@ def contact_refresh(contact: BristleContact, step_size: float, margin: float = 0
     one largest step at its current speed: pairs farther apart than that cannot touch
     before the next refresh, so the force function need not search. The largest step is
     the larger of the coming step and the solver's cap for it (larger in the middle of a
-    stroke: exubrush.run.step_policy.sliding_step_cap, which must run before this hook), at
+    stroke: exubrush.run.step_policy.motion_step_cap, which must run before this hook), at
     least ``step_size`` [s]."""
 
     def refresh(mbs, t):

@@ -89,8 +89,6 @@ def manual_brush_case() -> Case:
 # sources and assumptions): the `tuft` case's tufts in rings on an 11 mm disc
 ROUND_HEAD_RINGS = ((0.0, 1), (2.0, 6), (3.9, 12))  # (radius [mm], tufts) of each ring
 OSCILLATION = (7600.0 / 60.0, math.radians(20.0))  # Hz, amplitude [rad]: ±20° at 7,600/min
-# 0.39 ms: within the 20 steps per cycle (0.395 ms) that exubrush.run.budget asks for
-STEP = 0.39e-3  # s
 
 
 def oscillating_rotating_case() -> Case:
@@ -109,7 +107,6 @@ def oscillating_rotating_case() -> Case:
         name="oscillating-rotating",
         head=base.head.replace(tufts=tufts),
         motion=base.motion.replace(profile="none", period=0.1, periods=5.0, sine=(turn,)),
-        solver=base.solver.replace(step_size=STEP),
         output=base.output.replace(interval=1e-3, shape_interval=0.01),
     )
 

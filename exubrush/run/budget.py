@@ -16,7 +16,9 @@ Estimates (per run, internal units):
 Resolution: the largest step must resolve the motion, or the solver steps over it (a
 20 s step on a 12 s slide period ran to the end with a peak force 9.4x the right one):
 at least 100 steps per slide period (or over a slide CSV's duration), 20 per approach, 4
-per hold, 20 per cycle of each sine pose term and 100 over a pose CSV's duration. A slide
+per hold and 100 over a pose CSV's duration; while a sine pose term acts the step is capped
+at a twentieth of its cycle (exubrush.run.step_policy), which the steps' estimate counts,
+and a term that would need a step below solver.minimum_step_size is refused. A slide
 CSV's sample spacing is no bound: a finely sampled smooth profile needs no step that small,
 and where a profile moves faster than the step resolves (a jump, a sharp corner), a warning
 says so (:func:`motion_warnings`). The output interval must fit into the run at least
@@ -31,7 +33,7 @@ from dataclasses import dataclass
 STEPS_PER_PERIOD = 100
 STEPS_PER_APPROACH = 20
 STEPS_PER_HOLD = 4
-STEPS_PER_CYCLE = 20  # of a sine pose term (motion.sine): its drive, not the filaments' answer
+STEPS_PER_CYCLE = 20  # while a sine pose term acts: its drive, not the filaments' answer
 COPIES = 3  # node histories held at once while joining the groups' results
 DOUBLE = 8  # bytes
 C_INT = 2**31 - 1  # Exudyn's step counter is a C int
@@ -53,15 +55,35 @@ class WorkEstimate:
     memory: float
 
 
-def estimate(case, bristles: int, end_time: float) -> WorkEstimate:
-    """The work of ``case`` with ``bristles`` bristles and ``end_time`` [s]."""
+def term_steps(case, end_time: float, slide_start: float) -> int:
+    """Steps the sine pose terms (motion.sine) add to ``end_time / solver.step_size``
+    [-]: from the look-ahead before each term (exubrush.run.step_policy.term_step_cap) to
+    its end or the run's, at a :data:`STEPS_PER_CYCLE`-th of its cycle instead of the step
+    (overlapping terms counted apiece: an upper bound)."""
+    step = case.solver.step_size
+    ahead = (case.solver.step_recovery_steps + 2) * step
+    extra = 0
+    for term in case.motion.sine:
+        fine = 1.0 / (term.frequency * STEPS_PER_CYCLE)
+        if fine < step:
+            start = slide_start + term.start
+            end = min(start + term.duration if term.duration else end_time, end_time)
+            span = max(end - max(start - ahead, 0.0), 0.0)
+            extra += math.ceil(span / fine) - math.floor(span / step)
+    return extra
+
+
+def estimate(case, bristles: int, end_time: float, slide_start: float = 0.0) -> WorkEstimate:
+    """The work of ``case`` with ``bristles`` bristles and ``end_time`` [s], the slide (and
+    the pose terms' clock) starting at ``slide_start`` [s]."""
     rows = math.floor(end_time / case.output.interval) + 1
     nodes = case.model.segments if case.model.kind == "dfm" else 1
     memory = float(rows) * bristles * (nodes + 1) * 3 * DOUBLE * COPIES
     if case.output.solution_file:
         coordinates = 6 + bristles * nodes * 7  # handle; Euler parameters: 7 per node
         memory += (math.floor(end_time / case.output.shape_interval) + 1) * coordinates * DOUBLE
-    return WorkEstimate(steps=math.ceil(end_time / case.solver.step_size), memory=memory)
+    steps = math.ceil(end_time / case.solver.step_size) + term_steps(case, end_time, slide_start)
+    return WorkEstimate(steps=steps, memory=memory)
 
 
 def over_size(case, bristles: int) -> list[str]:
@@ -107,13 +129,9 @@ def unresolved(case, motion) -> list[str]:
     if m.profile == "sine":
         scales.append((m.period / STEPS_PER_PERIOD,
                        f"{STEPS_PER_PERIOD} steps per slide period (motion.period)"))
-    else:  # the profile's own length; its fast parts are motion_warnings' business
+    elif m.profile == "csv":  # the profile's own length; its fast parts: motion_warnings
         scales.append((motion.slide.duration / STEPS_PER_PERIOD,
                        f"{STEPS_PER_PERIOD} steps over the slide CSV's duration"))
-    for i, entry in enumerate(m.sine):
-        scales.append((1.0 / (entry.frequency * STEPS_PER_CYCLE),
-                       f"{STEPS_PER_CYCLE} steps per cycle of motion.sine[{i}] "
-                       f"({entry.frequency:g} Hz)"))
     table = motion.pose.table if motion.pose is not None else None
     if table is not None:
         scales.append((table.duration / STEPS_PER_PERIOD,
@@ -123,6 +141,12 @@ def unresolved(case, motion) -> list[str]:
                        f"{STEPS_PER_HOLD} steps per hold (motion.hold_duration)"))
     bound, why = min(scales)
     found = []
+    for i, entry in enumerate(m.sine):  # its steps are capped while it acts (step_policy)
+        fine = 1.0 / (entry.frequency * STEPS_PER_CYCLE)
+        if fine < case.solver.minimum_step_size:
+            found.append(f"motion.sine[{i}] ({entry.frequency:g} Hz) needs steps of at most "
+                         f"{_seconds(fine)} ({STEPS_PER_CYCLE} per cycle), below "
+                         f"solver.minimum_step_size {_seconds(case.solver.minimum_step_size)}")
     if step > bound * (1 + 1e-12):  # the tightest scale; the others follow from it
         found.append(f"solver.step_size {_seconds(step)} does not resolve the motion: "
                      f"{why} need a step of at most {_seconds(bound)}")

@@ -154,7 +154,7 @@ def prepare(case: Case) -> PreparedCase:
         motion = with_pose(motion, case.motion)
     except ValueError as err:
         raise ParameterError(f"motion.pose_csv: {err}") from None
-    work = estimate(case, len(bristles), motion.end_time)
+    work = estimate(case, len(bristles), motion.end_time, motion.slide_start)
     _refuse(over_work(case, work) + unresolved(case, motion))
     mesh = None
     if case.surface.kind == "mesh":

@@ -37,7 +37,7 @@ from exubrush.parameters.surface_kinds import SURFACE_KIND
 from exubrush.run.newton import LineSearch, after_step_cut, has_lie_group_nodes
 from exubrush.run.prepared import PreparedCase
 from exubrush.run.solver import fresh_jacobian_after_step_change, linear_solver
-from exubrush.run.step_policy import sliding_step_cap
+from exubrush.run.step_policy import motion_step_cap
 from exubrush.world.kinematics import handle_coordinates
 from exubrush.world.mesh import frame_with_normal
 from exubrush.world.motion import HeadMotion
@@ -403,7 +403,7 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
     # touching groups renew the Jacobian at every step attempt anyway (solver.dynamic_settings)
     if scene.bristle_contact is None and linear_solver(case.solver) == "EigenSparse":
         scene.step_hooks.append(fresh_jacobian_after_step_change())
-    cap = sliding_step_cap(case, scene.motion, tips)
+    cap = motion_step_cap(case, scene.motion, tips)
     if cap is not None:
         scene.step_hooks.append(cap)
     if scene.bristle_contact is not None:  # after the step cap: it reads the step's cap

@@ -122,9 +122,8 @@ def fresh_jacobian_after_step_change():
     return refresh
 
 
-def step_cap(step_size: float, larger_step: float, larger_allowed):
-    """Pre-step hook (mbs, t) that sets Exudyn's largest step: ``larger_step`` [s] where
-    ``larger_allowed(mbs, t)`` holds, else ``step_size`` [s].
+def step_cap(largest):
+    """Pre-step hook (mbs, t) that sets Exudyn's largest step to ``largest(mbs, t)`` [s].
 
     Exudyn calls the hook with t at the end of the step it is about to try, whose size is
     fixed by then. Exudyn applies the cap when it next tries to grow the step, which it
@@ -132,7 +131,7 @@ def step_cap(step_size: float, larger_step: float, larger_allowed):
     the cap): a larger cap lets the step double towards it there, and a smaller one takes
     the step down to it there (or at the next failed try, which cuts it by
     ``solver.step_cut``). So the step the hook sees and up to ``step_recovery_steps`` − 1
-    after it may still be large, and ``larger_allowed`` should look that far ahead. A good
+    after it may still be large, and ``largest`` should look that far ahead. A good
     step is one that converged within Exudyn's ``adaptiveStepRecoveryIterations`` (7)
     Newton iterations: large steps that each take more but converge would keep the step
     large for longer; in the middle of a stroke they take one or two.
@@ -143,12 +142,12 @@ def step_cap(step_size: float, larger_step: float, larger_allowed):
     def cap(mbs, t):
         solver = mbs.sys.get("dynamicSolver")
         if solver is not None:
-            largest = larger_step if larger_allowed(mbs, t) else step_size
+            value = largest(mbs, t)
             # Exudyn sets maxStepSize only when a solve starts: an unchanged cap is not set
             # again (~0.6 µs a step)
-            if solver is not last[0] or largest != last[1]:
-                solver.it.maxStepSize = largest
-                last[:] = [solver, largest]
+            if solver is not last[0] or value != last[1]:
+                solver.it.maxStepSize = value
+                last[:] = [solver, value]
 
     return cap
 

@@ -3,8 +3,9 @@
 In steady sliding Newton converges in one or two iterations, so the step may grow from
 ``solver.step_size`` to the larger sliding step there; near reversals, in the friction
 law's Stribeck band and where tips can snap off edges it stays ``step_size``
-(docs/model.md, "Steps in the middle of a stroke"). :func:`sliding_step_cap` makes the
-step hook that sets Exudyn's cap (exubrush.run.solver.step_cap) accordingly.
+(docs/model.md, "Steps in the middle of a stroke"). While a sine pose term acts the step
+is no larger than a twentieth of its cycle (docs/motion.md). :func:`motion_step_cap` makes
+the step hook that sets Exudyn's cap (exubrush.run.solver.step_cap) accordingly.
 """
 
 from __future__ import annotations
@@ -15,7 +16,9 @@ import exudyn as exu
 import numpy as np
 
 from exubrush.parameters.surface_kinds import SURFACE_KIND
+from exubrush.run.budget import STEPS_PER_CYCLE
 from exubrush.run.solver import step_cap
+from exubrush.world.pose import SineTerm
 from exubrush.world.surfaces import flat_top_clearance
 
 if TYPE_CHECKING:
@@ -28,10 +31,10 @@ if TYPE_CHECKING:
 STRIBECK_MARGIN = 1.5
 
 
-def sliding_step_cap(case: Case, motion: HeadMotion, tips: list):
-    """The step hook (mbs, t) letting the step grow from ``solver.step_size`` to the
+def sliding_step_largest(case: Case, motion: HeadMotion, tips: list):
+    """``largest(mbs, t)``: the step [s] may grow from ``solver.step_size`` to the
     sliding step (``solver.sliding_step_factor`` times it, at most ``output.interval``)
-    [s] while the head slides fast enough from now until a lower cap could take hold
+    while the head slides fast enough from now until a lower cap could take hold
     (HeadMotion.sliding_faster_throughout) and, on a tooth row, every tip of ``tips``
     (node, sphere radius [mm]) is over a flat top (:func:`tips_on_flat_tops`); None where
     the step never grows: a sliding step no larger than ``step_size``, or a surface kind
@@ -56,15 +59,59 @@ def sliding_step_cap(case: Case, motion: HeadMotion, tips: list):
     fast = motion.sliding_faster_throughout(speed, ahead, solver.step_size)
     pose = motion.pose  # its terms move faster than a slide: never a larger step while on
 
-    def larger_allowed(mbs, t):
-        return (fast(t) and (pose is None or not pose.acts_between(t, t + ahead))
-                and (clear is None or clear(mbs)))
+    def largest(mbs, t):
+        larger = (fast(t) and (pose is None or not pose.acts_between(t, t + ahead))
+                  and (clear is None or clear(mbs)))
+        return sliding_step if larger else solver.step_size
 
-    return step_cap(solver.step_size, sliding_step, larger_allowed)
+    return largest
+
+
+def motion_step_cap(case: Case, motion: HeadMotion, tips: list):
+    """The step hook (mbs, t) that sets Exudyn's largest step (exubrush.run.solver.step_cap):
+    ``solver.step_size``, larger in the middle of a stroke (:func:`sliding_step_largest`),
+    and no larger than a sine pose term's :data:`~exubrush.run.budget.STEPS_PER_CYCLE`-th
+    of a cycle from the look-ahead before it acts to its end (:func:`term_step_cap`); None
+    where the step is ``solver.step_size`` throughout."""
+    sliding = sliding_step_largest(case, motion, tips)
+    term = term_step_cap(case, motion)
+    if sliding is None and term is None:
+        return None
+    step = case.solver.step_size
+
+    def largest(mbs, t):
+        value = step if sliding is None else sliding(mbs, t)
+        finer = None if term is None else term(t)
+        return value if finer is None else min(value, finer)
+
+    return step_cap(largest)
+
+
+def term_step_cap(case: Case, motion: HeadMotion):
+    """``finer(t)``: the largest step [s] the sine pose terms allow at t, None where none
+    acts from t over the look-ahead ((solver.step_recovery_steps + 2) steps of
+    ``solver.step_size``: a smaller cap takes hold only at Exudyn's next try to grow the
+    step, exubrush.run.solver.step_cap); None if no term asks for less than
+    ``solver.step_size``."""
+    step = case.solver.step_size
+    ahead = (case.solver.step_recovery_steps + 2) * step
+    windows = []
+    for term in motion.pose.terms if motion.pose is not None else ():
+        if isinstance(term, SineTerm) and 1.0 / (term.frequency * STEPS_PER_CYCLE) < step:
+            windows.append((term.start - ahead, term.end,
+                            1.0 / (term.frequency * STEPS_PER_CYCLE)))
+    if not windows:
+        return None
+
+    def finer(t):
+        caps = [cap for start, end, cap in windows if start <= t <= end]
+        return min(caps) if caps else None
+
+    return finer
 
 
 def tips_on_flat_tops(surface: Surface, tips: list, ahead: float, speed: float):
-    """``clear(mbs)`` for :func:`sliding_step_cap` on a tooth row: whether every tip
+    """``clear(mbs)`` for :func:`sliding_step_largest` on a tooth row: whether every tip
     (node, sphere radius [mm]) lies over the flat part of a tooth top with room along the
     row, before the rounded edges begin, for its radius and its travel over ``ahead`` [s]
     at ``speed`` (the head's peak [mm/s]) or at its own speed along the row if faster (so

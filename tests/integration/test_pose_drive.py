@@ -121,3 +121,23 @@ def test_the_drive_of_a_bare_handle_gives_its_m_a_and_its_rate_of_angular_moment
     for before, after in zip(coarse, fine, strict=True):
         assert after < before / 3.0  # second order: 4, with room for the start-up step
         assert after < 0.03
+
+
+@pytest.mark.slow  # an Exudyn solve of one bristle, 0.12 s simulated
+def test_the_step_follows_a_vibration_while_it_acts(tmp_path):
+    # the default 2 ms step, a 200 Hz shake for 0.05 s: 20 steps a cycle while it acts
+    # (exubrush.run.step_policy.term_step_cap), 2 ms steps elsewhere
+    path = tmp_path / "shaken.toml"
+    path.write_text('[head]\nrows = 1\ncolumns = 1\n[motion]\nprofile = "none"\n'
+                    'period = "0.06 s"\nperiods = 1\napproach_duration = "0.05 s"\n'
+                    'hold_duration = "0.01 s"\n[[motion.sine]]\naxis = "y"\n'
+                    'amplitude = "0.1 mm"\nfrequency = "200 Hz"\nduration = "0.05 s"\n'
+                    '[output]\ninterval = "0.25 ms"\nshape_interval = "10 ms"\n')
+    prepared = prepare(load_case(str(path)))
+    solution = solve_group(prepared, prepared.groups[0])
+    assert solution.completed
+    fine, coarse = 1 / (200 * 20), 2e-3
+    # at least the shake's own steps; without the cap the whole run takes about 60
+    assert solution.statistics.steps >= 0.05 / fine
+    assert solution.statistics.steps <= prepared.work.steps + 50  # + the solver's own cuts
+    assert coarse > 5 * fine

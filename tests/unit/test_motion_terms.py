@@ -111,15 +111,19 @@ def test_the_handles_velocity_and_acceleration_are_those_of_its_position(tmp_pat
                                    rtol=1e-3, atol=5.0)  # mm/s² of ~1e5: rounding / h²
 
 
-def test_a_vibration_the_step_cannot_resolve_is_refused_before_anything_is_built(tmp_path):
+def test_a_vibration_is_stepped_finely_while_it_acts_and_counted_in_the_budget(tmp_path):
     case = load_case(_case_file(tmp_path, '[[motion.sine]]\naxis = "y"\namplitude = "0.3 mm"\n'
-                                          'frequency = "260 Hz"\n'))
+                                          'frequency = "260 Hz"\nduration = "0.5 s"\n'))
+    prepared = prepare(case)  # the 2 ms step stays: the vibration caps it while it acts
+    plain = math.ceil(prepared.motion.end_time / case.solver.step_size)
+    fine = 1 / (260 * 20)
+    # from 6 steps of 2 ms before the term to its end, 20 steps a cycle instead of 2 ms ones
+    assert prepared.work.steps - plain == math.ceil((0.5 + 0.012) / fine) - math.floor(
+        (0.5 + 0.012) / 2e-3)
     with pytest.raises(ParameterError) as caught:
-        prepare(case)
-    assert str(caught.value) == (
-        "solver.step_size 2 ms does not resolve the motion: 20 steps per cycle of "
-        "motion.sine[0] (260 Hz) need a step of at most 0.1923 ms")
-    prepare(case.replace(solver=case.solver.replace(step_size=1 / (260 * 20))))
+        prepare(case.replace(solver=case.solver.replace(minimum_step_size=1e-3)))
+    assert ("motion.sine[0] (260 Hz) needs steps of at most 0.1923 ms (20 per cycle), below "
+            "solver.minimum_step_size 1 ms") in str(caught.value)
 
 
 def test_a_pose_csv_is_read_relative_to_the_case_file_and_checked(tmp_path):

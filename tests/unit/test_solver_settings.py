@@ -102,7 +102,7 @@ def test_the_force_tolerance_follows_the_weakest_bristle_of_a_group():
 
 
 def test_the_step_cap_follows_the_condition_once_the_solver_exists():
-    hook = step_cap(2e-3, 5e-3, lambda mbs, t: 1.0 <= t < 2.0)
+    hook = step_cap(lambda mbs, t: 5e-3 if 1.0 <= t < 2.0 else 2e-3)
     iteration = SimpleNamespace(maxStepSize=2e-3)
     system = SimpleNamespace(sys={})
     hook(system, 1.5)  # before Exudyn stored its solver: nothing to set, no error
