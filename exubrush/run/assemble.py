@@ -93,8 +93,8 @@ def assemble_results(prepared: PreparedCase, solutions: Sequence[GroupSolution |
     rows = np.arange(0, n, stride)
     roots = np.array([b.root for b in prepared.bristles])
     # the roots turn with the head about the handle's node (A r, exubrush.world.pose)
-    turned = np.array([roots @ rotation_matrix(theta).T for theta in angles[rows]]) if (
-        prepared.motion.pose is not None) else roots[None, :, :]
+    turned = np.array([roots @ rotation_matrix(theta).T for theta in angles[rows]]).reshape(
+        len(rows), *roots.shape) if prepared.motion.pose is not None else roots[None, :, :]
     shape_nodes = np.concatenate(
         [(handle_position[rows][:, None, :] + turned)[:, :, None, :], nodes[rows]],
         axis=2,

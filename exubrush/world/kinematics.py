@@ -86,6 +86,7 @@ def handle_angles(motion: HeadMotion, times: np.ndarray):
         zero = np.zeros((len(times), 3))
         return zero, zero.copy(), zero.copy()
     values = np.array([[part[3:] for part in motion.pose.evaluate(t)] for t in times])
+    values = values.reshape(len(times), 3, 3)  # no times (a run stopped before any): (0, 3, 3)
     return values[:, 0], values[:, 1], values[:, 2]
 
 

@@ -10,7 +10,7 @@ from exubrush.parameters.case import POSE_AXES, Motion
 from exubrush.parameters.fields import ParameterError, build
 from exubrush.parameters.io import load_case
 from exubrush.run.prepared import prepare
-from exubrush.world.kinematics import handle_coordinates, handle_kinematics
+from exubrush.world.kinematics import handle_angles, handle_coordinates, handle_kinematics
 from exubrush.world.motion import HeadMotion, RestingSlide
 from exubrush.world.pose import AXES, with_pose
 
@@ -134,3 +134,23 @@ def test_a_pose_csv_is_read_relative_to_the_case_file_and_checked(tmp_path):
     (tmp_path / "bad.csv").write_text("time [s],colour [mm]\n0,0\n1,1\n")
     with pytest.raises(ParameterError, match="motion.pose_csv: pose CSV .*bad.csv.* has none"):
         prepare(load_case(_case_file(tmp_path, 'pose_csv = "bad.csv"\n')))
+
+
+def test_a_posed_run_stopped_before_its_first_sample_has_no_angles(tmp_path):
+    # an interrupted run with no sample yet assembles empty results, not a traceback
+    prepared = prepare(load_case(_case_file(tmp_path, (
+        '[[motion.sine]]\naxis = "rz"\nangle = "5 deg"\nfrequency = "50 Hz"\n'))))
+    angles, rates, turning = handle_angles(prepared.motion, np.zeros(0))
+    assert angles.shape == rates.shape == turning.shape == (0, 3)
+
+
+def test_a_posed_run_interrupted_before_any_sample_saves_its_record_only(tmp_path):
+    from exubrush.run.assemble import RunFacts, assemble_results
+
+    prepared = prepare(load_case(_case_file(tmp_path, (
+        '[[motion.sine]]\naxis = "rz"\nangle = "5 deg"\nfrequency = "50 Hz"\n'))))
+    results = assemble_results(prepared, [None] * len(prepared.groups),
+                               RunFacts(interrupted=True, wall_time=1.0, workers=1))
+    assert results.metadata["status"] == "interrupted" and results.wrench is None
+    results.save(tmp_path / "out")
+    assert sorted(p.name for p in (tmp_path / "out").iterdir()) == ["run.json"]
