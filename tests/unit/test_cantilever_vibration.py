@@ -14,9 +14,12 @@ from exubrush.reference.cantilever_vibration import (
     SECOND_ROOT,
     characteristic,
     first_bending_frequency,
+    mode_constant,
+    mode_roots,
     mode_shape,
     mode_slope,
     participation_factor,
+    stiffness_damped_tip_amplification,
     stiffness_proportional_damping_ratio,
     tip_amplification,
 )
@@ -99,3 +102,47 @@ def test_nylon_filament_near_350_hz():
         2000.0 * math.pi * 0.1**4 / 4.0 / (1.06e-9 * math.pi * 0.1**2)) / (2.0 * math.pi)
     assert frequency == pytest.approx(by_hand, rel=1e-9)
     assert 340.0 < frequency < 360.0  # the "near 350 Hz"
+
+
+def test_mode_roots():
+    roots = mode_roots(6)
+    assert roots[:2] == pytest.approx([FIRST_ROOT, SECOND_ROOT], abs=1e-12)
+    # each a root, and they tend to (n - 1/2)π (within 1e-4 from the fourth on)
+    assert all(abs(characteristic(x)) < 1e-12 * math.cosh(x) for x in roots)
+    assert roots[3:] == pytest.approx((np.arange(4, 7) - 0.5) * math.pi, abs=1e-4)
+
+
+def test_participation_at_the_tip_by_quadrature_for_higher_modes():
+    # the closed form ±4σ/βL that the sum uses, against quadrature of the shape (modes 1-4;
+    # quadrature of the shape loses digits to cosh - sinh cancellation above that)
+    for n, root in enumerate(mode_roots(4)):
+        integral, _ = quad(lambda s, b=root: mode_shape(s, b), 0.0, 1.0, epsabs=1e-12)
+        tip = float(mode_shape(1.0, root))
+        assert tip == pytest.approx(2.0 * (-1.0) ** n, rel=1e-8)
+        assert integral * tip == pytest.approx((-1.0) ** n * 4.0 * mode_constant(root) / root,
+                                               rel=1e-8)
+
+
+def test_mode_sum():
+    r = np.array([0.0, 0.3, 0.8, 1.0, 2.0])
+    # one mode: the one-mode reference exactly
+    np.testing.assert_allclose(stiffness_damped_tip_amplification(r, 0.05, modes=1),
+                               tip_amplification(r, 0.05), rtol=1e-14)
+    # the mode sum's static limit: Σ Γ_n φ_n(L) → 1, so the slow part of the relative
+    # motion, Σ Γ_n φ_n(L) r_n², has r² times Σ Γ_n φ_n(L)/(ω_n/ω₁)², and the amplification
+    # approaches 1 from above as r → 0 (4e-6 at r = 1e-3)
+    assert stiffness_damped_tip_amplification(1e-3, 0.05) == pytest.approx(1.0, abs=4e-6)
+    # five against two modes: < 0.05 % for r <= 1 (modes 3-5 respond statically there)
+    two = stiffness_damped_tip_amplification(r, 0.05, modes=2)
+    five = stiffness_damped_tip_amplification(r, 0.05, modes=5)
+    np.testing.assert_allclose(five[:4], two[:4], rtol=5e-4)
+    # the second mode's share well below its resonance: quasi-static, Γ₂φ₂(L) r₂² with
+    # Γ₂φ₂(L) = -0.868 and r₂ = r/6.267, added to the first mode's response (projected on
+    # its phase): -0.17 % at r = 0.3, -0.37 % at r = 0.5; 2 % for the neglected r₂⁴ terms
+    # and the second mode's damping
+    low = np.array([0.3, 0.5])
+    first = 1.0 + 1.566 * low**2 / (1.0 - low**2 + 0.1j * low)
+    share = -0.868 * (low / 6.267) ** 2 * np.real(first) / np.abs(first) ** 2
+    np.testing.assert_allclose(
+        stiffness_damped_tip_amplification(low, 0.05, modes=2) / tip_amplification(low, 0.05)
+        - 1.0, share, rtol=0.02)
