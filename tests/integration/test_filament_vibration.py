@@ -1,4 +1,4 @@
-"""A DFM nylon filament vibrates as a clamped-free Euler-Bernoulli beam (issue 36).
+"""A DFM nylon filament vibrates as a clamped-free Euler-Bernoulli beam.
 
 One round 0.2 mm filament, 10.5 mm long, of the built-in nylon (E = 2000 MPa, ρ = 1.06e-9
 t/mm³), clamped to ground (free decay) or to a rigid handle shaken sideways (base
