@@ -164,13 +164,16 @@ def _add_drive(scene: Scene, handle_node) -> None:
 
     last = [None] * len(moving)
 
-    def drive(mbs, t):
+    def offsets(t):
+        """The moving axes' offsets at t: all six from the pose, or the slide's and the
+        descent's share of each."""
         if posed:
-            offsets = handle_coordinates(motion, slide_axis, t)
-        else:
-            slide, descent = motion.sliding(t)[0], motion.descent(t)[0]
-        for k, (constraint, along, down) in enumerate(moving):
-            offset = float(offsets[k]) if posed else along * slide - down * descent
+            return [float(value) for value in handle_coordinates(motion, slide_axis, t)]
+        slide, descent = motion.sliding(t)[0], motion.descent(t)[0]
+        return [along * slide - down * descent for _, along, down in moving]
+
+    def drive(mbs, t):
+        for k, ((constraint, _, _), offset) in enumerate(zip(moving, offsets(t), strict=True)):
             # an unchanged offset is not set again (~0.9 µs a call): the descent holds
             # after the approach, the slide before it
             if offset != last[k]:
