@@ -327,6 +327,11 @@ def describe_key(cls: type, key: str, label: str | None = None) -> tuple[Any, Ma
     renamed = getattr(owner, "RENAMED", {})
     if leaf in renamed:
         raise ParameterError(f"{label}: {renamed[leaf]}")
+    if owner is not None and leaf in {f.name for f in dataclasses.fields(owner)}:
+        entry = _nested_entry_type(_field_types(owner)[leaf])
+        if entry is not None:  # a list of tables, e.g. head.tufts, motion.sine
+            raise ParameterError(f"{label}: {key} is a list of tables: give its entries in a "
+                                 f"case file as [[{key}]] (see 'exubrush case')")
     if key not in known or owner is None:  # no owner: the key is not known either
         close = ([k for k in known if k.split(".")[-1] == key.split(".")[-1]]
                  or difflib.get_close_matches(key, known, n=1))

@@ -129,6 +129,8 @@ MALFORMED = [
      "times must increase strictly, but sample 3 is at 0.5 s after 1 s"),
     ("csv", "time [s],slider_position [mm]\n0,0\n1,nan\n", "must hold finite numbers only"),
     # pose terms
+    ("set", ["motion.sine=[]"], "motion.sine is a list of tables: give its entries in a case "
+     "file as [[motion.sine]]"),
     ("toml", '[[motion.sine]]\naxis = "y"\nfrequency = "260 Hz"\n',
      "motion.sine[0]: axis 'y' needs a amplitude above 0"),
     ("toml", '[[motion.sine]]\naxis = "y"\namplitude = "1 mm"\nfrequency = "inf Hz"\n',
