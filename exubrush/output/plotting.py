@@ -12,6 +12,7 @@ from matplotlib.figure import Figure
 from exubrush.models.geometry import head_bristles
 from exubrush.output.cleaning import footprint, gap_depth_history
 from exubrush.output.metrics import friction_coefficient, travelled_distance
+from exubrush.output.vibration import ROTATION_PLANES
 from exubrush.util.files import atomic_file
 
 
@@ -188,7 +189,7 @@ def plot_vibration(results, entries: list[dict], amplitudes: list, target) -> No
     pivot = np.asarray(case.motion.pivot)
     for axis, (entry, amplitude) in zip(axes[0], measured, strict=True):
         if entry["unit"] == "rad":
-            u, v = {"rx": (1, 2), "ry": (2, 0), "rz": (0, 1)}[entry["axis"]]
+            u, v = ROTATION_PLANES[entry["axis"]]
             distance = np.hypot(roots[:, u] - pivot[u], roots[:, v] - pivot[v])
             label = f"root's distance from the {entry['axis'][1]} axis through the pivot [mm]"
             scale, unit = 180.0 / np.pi, "deg"

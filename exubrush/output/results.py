@@ -63,9 +63,8 @@ class HeadWrench:
 
     def columns(self) -> dict[str, np.ndarray]:
         """The twelve columns of :data:`WRENCH_COLUMNS` by name."""
-        parts = (self.force, self.moment, self.head_force, self.head_moment)
-        return {name: part[:, k] for (name, _), (part, k) in zip(
-            WRENCH_COLUMNS, ((part, k) for part in parts for k in range(3)), strict=True)}
+        stacked = np.column_stack([self.force, self.moment, self.head_force, self.head_moment])
+        return {name: stacked[:, k] for k, (name, _) in enumerate(WRENCH_COLUMNS)}
 
     @classmethod
     def from_columns(cls, series: dict[str, np.ndarray]) -> HeadWrench | None:
@@ -127,11 +126,11 @@ class Results:
             "friction_coefficient": self.friction_coefficient,
             "head_height": self.head_height,
         }
+        written = CSV_COLUMNS
         if self.wrench is not None:
             values.update(self.wrench.columns())
-            return {f"{name} [{unit}]": values[name]
-                    for name, unit in (*CSV_COLUMNS, *WRENCH_COLUMNS)}
-        return {f"{name} [{unit}]": values[name] for name, unit in CSV_COLUMNS}
+            written = (*CSV_COLUMNS, *WRENCH_COLUMNS)
+        return {f"{name} [{unit}]": values[name] for name, unit in written}
 
     @functools.cached_property
     def tip_contacts(self) -> TipContacts | None:
@@ -316,8 +315,8 @@ def read_results(directory: str | Path) -> Results:
     if not (directory / "forces.csv").is_file():
         raise ResultsError(f"{str(directory)!r} has no forces.csv (run status "
                            f"{metadata.get('status', 'unknown')!r}): nothing to read")
-    units = {name: unit for name, unit in (*CSV_COLUMNS, *WRENCH_COLUMNS)
-             if name in _SERIES or (name, unit) in WRENCH_COLUMNS}
+    units = {**{name: unit for name, unit in CSV_COLUMNS if name in _SERIES},
+             **dict(WRENCH_COLUMNS)}
     try:
         series = read_unit_table(directory / "forces.csv", units, "result file",
                                  optional=tuple(name for name, _ in WRENCH_COLUMNS))

@@ -55,21 +55,37 @@ class WorkEstimate:
     memory: float
 
 
-def term_steps(case, end_time: float, slide_start: float) -> int:
-    """Steps the sine pose terms (motion.sine) add to ``end_time / solver.step_size``
-    [-]: from the look-ahead before each term (exubrush.run.step_policy.term_step_cap) to
-    its end or the run's, at a :data:`STEPS_PER_CYCLE`-th of its cycle instead of the step
-    (overlapping terms counted apiece: an upper bound)."""
+def term_step(frequency: float) -> float:
+    """The largest step [s] while a sine pose term of ``frequency`` [Hz] acts: a
+    :data:`STEPS_PER_CYCLE`-th of its cycle."""
+    return 1.0 / (frequency * STEPS_PER_CYCLE)
+
+
+def term_windows(case, slide_start: float, end_time: float) -> list[tuple[float, float, float]]:
+    """(from [s], to [s], largest step [s]) of each sine pose term (motion.sine) whose step
+    is below ``solver.step_size``: from (solver.step_recovery_steps + 2) steps before it
+    starts (a smaller cap takes hold only at Exudyn's next try to grow the step,
+    exubrush.run.solver.step_cap) to its end or the run's (exubrush.run.step_policy)."""
     step = case.solver.step_size
     ahead = (case.solver.step_recovery_steps + 2) * step
-    extra = 0
+    windows = []
     for term in case.motion.sine:
-        fine = 1.0 / (term.frequency * STEPS_PER_CYCLE)
-        if fine < step:
+        if term_step(term.frequency) < step:
             start = slide_start + term.start
             end = min(start + term.duration if term.duration else end_time, end_time)
-            span = max(end - max(start - ahead, 0.0), 0.0)
-            extra += math.ceil(span / fine) - math.floor(span / step)
+            windows.append((start - ahead, end, term_step(term.frequency)))
+    return windows
+
+
+def term_steps(case, end_time: float, slide_start: float) -> int:
+    """Steps the sine pose terms add to ``end_time / solver.step_size`` [-]: over each of
+    :func:`term_windows` within the run, its term's step instead of ``step_size``
+    (overlapping terms counted apiece: an upper bound)."""
+    step = case.solver.step_size
+    extra = 0
+    for start, end, fine in term_windows(case, slide_start, end_time):
+        span = max(end - max(start, 0.0), 0.0)
+        extra += math.ceil(span / fine) - math.floor(span / step)
     return extra
 
 
@@ -142,7 +158,7 @@ def unresolved(case, motion) -> list[str]:
     bound, why = min(scales)
     found = []
     for i, entry in enumerate(m.sine):  # its steps are capped while it acts (step_policy)
-        fine = 1.0 / (entry.frequency * STEPS_PER_CYCLE)
+        fine = term_step(entry.frequency)
         if fine < case.solver.minimum_step_size:
             found.append(f"motion.sine[{i}] ({entry.frequency:g} Hz) needs steps of at most "
                          f"{_seconds(fine)} ({STEPS_PER_CYCLE} per cycle), below "

@@ -16,9 +16,8 @@ import exudyn as exu
 import numpy as np
 
 from exubrush.parameters.surface_kinds import SURFACE_KIND
-from exubrush.run.budget import STEPS_PER_CYCLE
+from exubrush.run.budget import term_windows
 from exubrush.run.solver import step_cap
-from exubrush.world.pose import SineTerm
 from exubrush.world.surfaces import flat_top_clearance
 
 if TYPE_CHECKING:
@@ -88,18 +87,10 @@ def motion_step_cap(case: Case, motion: HeadMotion, tips: list):
 
 
 def term_step_cap(case: Case, motion: HeadMotion):
-    """``finer(t)``: the largest step [s] the sine pose terms allow at t, None where none
-    acts from t over the look-ahead ((solver.step_recovery_steps + 2) steps of
-    ``solver.step_size``: a smaller cap takes hold only at Exudyn's next try to grow the
-    step, exubrush.run.solver.step_cap); None if no term asks for less than
-    ``solver.step_size``."""
-    step = case.solver.step_size
-    ahead = (case.solver.step_recovery_steps + 2) * step
-    windows = []
-    for term in motion.pose.terms if motion.pose is not None else ():
-        if isinstance(term, SineTerm) and 1.0 / (term.frequency * STEPS_PER_CYCLE) < step:
-            windows.append((term.start - ahead, term.end,
-                            1.0 / (term.frequency * STEPS_PER_CYCLE)))
+    """``finer(t)``: the largest step [s] the sine pose terms allow at t, None outside
+    their windows (exubrush.run.budget.term_windows: from the look-ahead before each term
+    to its end); None if no term asks for less than ``solver.step_size``."""
+    windows = term_windows(case, motion.slide_start, motion.end_time)
     if not windows:
         return None
 
