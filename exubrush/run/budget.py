@@ -158,12 +158,10 @@ def unresolved(case, motion) -> list[str]:
     bound, why = min(scales)
     found = []
     for i, entry in enumerate(m.sine):  # its steps are capped while it acts (step_policy)
-        rise_end = motion.slide_start + entry.start + entry.ramp_cycles / entry.frequency
-        if rise_end > motion.end_time:
-            found.append(f"motion.sine[{i}] starts {_seconds(entry.start)} after the slide and "
-                         f"rises over {entry.ramp_cycles:g} cycles, to {_seconds(rise_end)}: "
-                         f"after the run's end ({_seconds(motion.end_time)}); start it earlier "
-                         "or lower ramp_cycles")
+        if motion.slide_start + entry.start >= motion.end_time:
+            found.append(f"motion.sine[{i}] starts {_seconds(entry.start)} after the slide, "
+                         f"at or after the run's end ({_seconds(motion.end_time)}): it would "
+                         "never act; start it earlier or run longer")
         fine = term_step(entry.frequency)
         if fine < case.solver.minimum_step_size:
             found.append(f"motion.sine[{i}] ({entry.frequency:g} Hz) needs steps of at most "
