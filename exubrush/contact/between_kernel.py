@@ -318,10 +318,11 @@ def segments_contact(a0, a1, b0, b1):
     result = np.empty((count, 7))
     x = np.empty((4, 3))
     for k in range(count):
-        x[0] = a0[k]
-        x[1] = a1[k]
-        x[2] = b0[k]
-        x[3] = b1[k]
+        for axis in range(3):  # scalar copies: a row assignment compiles numba's broadcasting
+            x[0, axis] = a0[k, axis]
+            x[1, axis] = a1[k, axis]
+            x[2, axis] = b0[k, axis]
+            x[3, axis] = b1[k, axis]
         parameters = segment_contact(x)
         for column in range(7):
             result[k, column] = parameters[column]

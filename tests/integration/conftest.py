@@ -1,9 +1,13 @@
 """Fixtures shared by the command-line tests."""
 
+import contextlib
+import inspect
+import os
 import subprocess
 import sys
 
 import pytest
+from click.testing import CliRunner
 
 
 def _exubrush(*args, timeout=300):
@@ -11,10 +15,33 @@ def _exubrush(*args, timeout=300):
                           text=True, timeout=timeout)
 
 
+def _exubrush_here(*args, cwd=None):
+    from exubrush.cli import main
+
+    # Click 8.1 mixes standard error into the output unless told not to; 8.2 keeps both
+    separate = ({"mix_stderr": False}
+                if "mix_stderr" in inspect.signature(CliRunner).parameters else {})
+    with contextlib.chdir(cwd or os.getcwd()):
+        done = CliRunner(**separate).invoke(main, [str(a) for a in args],
+                                            catch_exceptions=False)
+    return subprocess.CompletedProcess(["exubrush", *args], done.exit_code, done.stdout,
+                                       done.stderr)
+
+
 @pytest.fixture(scope="session")
 def cli():
     """Run the ``exubrush`` command line in a fresh interpreter: ``cli("run", ...)``."""
     return _exubrush
+
+
+@pytest.fixture(scope="session")
+def cli_here():
+    """Run the command line in this interpreter, as ``python -m exubrush`` does after its
+    start (Click's test runner; ``cwd=`` a working directory): a check of what a command
+    refuses, without the 0.3-0.4 s start of a fresh interpreter. An exception that escapes
+    the commands is raised in the test, as a fresh interpreter would print its traceback.
+    Returns a subprocess.CompletedProcess, as ``cli`` does."""
+    return _exubrush_here
 
 
 @pytest.fixture(scope="session")

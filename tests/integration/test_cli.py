@@ -75,8 +75,8 @@ def test_case_prints_toml_that_runs_back(cli, tmp_path):
     (["run", "orthogonal", "--set", "solver.user_functions=builtin"],
      "renamed contact.backend"),
 ])
-def test_user_mistakes_give_one_line_and_exit_2(cli, args, message):
-    done = cli(*args)
+def test_user_mistakes_give_one_line_and_exit_2(cli_here, args, message):
+    done = cli_here(*args)
     assert done.returncode == 2
     assert message in done.stderr
     assert "Traceback" not in done.stderr

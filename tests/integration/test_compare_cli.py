@@ -50,19 +50,19 @@ def test_compare_writes_summary_and_plots(cli, tmp_path, sine_run):
         assert (tmp_path / "cmp" / name).stat().st_size > 10_000
 
 
-def test_compare_refuses_a_directory_without_results(cli, tmp_path, sine_run):
+def test_compare_refuses_a_directory_without_results(cli_here, tmp_path, sine_run):
     _write_measured(tmp_path / "rig.csv", sine_run(), shift=0.0)
-    done = cli("compare", str(tmp_path), str(tmp_path / "rig.csv"))
+    done = cli_here("compare", str(tmp_path), str(tmp_path / "rig.csv"))
     assert done.returncode == 2
     assert "holds no run.json" in done.stderr and "Traceback" not in done.stderr
 
 
-@pytest.mark.slow  # 1.2 s or more beside a second worker: full run only
-def test_compare_refuses_a_measured_file_without_units(cli, tmp_path, sine_run):
+@pytest.mark.slow  # 1.1 s (saving the run draws its plot): full run only
+def test_compare_refuses_a_measured_file_without_units(cli_here, tmp_path, sine_run):
     _save_run(tmp_path / "run", sine_run())
     (tmp_path / "rig.csv").write_text("time,slider_position [mm],normal_force [N],"
                                       "tangential_force [N]\n0,0,1,0\n1,1,1,0\n")
-    done = cli("compare", str(tmp_path / "run"), str(tmp_path / "rig.csv"))
+    done = cli_here("compare", str(tmp_path / "run"), str(tmp_path / "rig.csv"))
     assert done.returncode == 2
     assert "column 'time' has no unit" in done.stderr and "Traceback" not in done.stderr
 

@@ -51,6 +51,6 @@ def test_frames_refuse_times_outside_the_run(two_model_runs, cli, tmp_path):
     assert "Traceback" not in done.stderr
 
 
-def test_frames_refuse_a_directory_without_results(cli, tmp_path):
-    done = cli("frames", str(tmp_path))
+def test_frames_refuse_a_directory_without_results(cli_here, tmp_path):
+    done = cli_here("frames", str(tmp_path))
     assert done.returncode == 2 and "holds no run.json" in done.stderr

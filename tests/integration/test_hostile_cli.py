@@ -2,8 +2,9 @@
 exit status (2 input, 1 run or write failure, 130 interrupted), never a traceback, and
 nothing written outside the output directory.
 
-Each command runs in a fresh interpreter with the test's folder as working directory; the
-folder is listed before and after, and only the output directory may have changed.
+Each command runs with the test's folder as working directory, the refusals in this
+interpreter (conftest's ``cli_here``), the runs and signals in a fresh one; the folder is
+listed before and after, and only the output directory may have changed.
 """
 
 import errno
@@ -74,7 +75,7 @@ def saved_run(tmp_path_factory):
     (["frames", "garbled"], 2, "'garbled/run.json' is not UTF-8 text (byte 0)"),
     (["compare", "garbled", "measured.csv"], 2, "'garbled/run.json' is not UTF-8 text"),
 ])
-def test_a_fault_ends_in_one_line(tmp_path, saved_run, args, status, message):
+def test_a_fault_ends_in_one_line(tmp_path, saved_run, cli_here, args, status, message):
     (tmp_path / "plain.txt").write_text("not a directory\n")
     (tmp_path / "binary.toml").write_bytes(b"\xff\xfe\x00\x01")
     (tmp_path / "binary.csv").write_bytes(b"\xff\xfe\x00\x01")
@@ -87,12 +88,22 @@ def test_a_fault_ends_in_one_line(tmp_path, saved_run, args, status, message):
     (tmp_path / "garbled").mkdir()
     (tmp_path / "garbled" / "run.json").write_bytes(b"\xff\xfe\x00\x01")
     before = _tree(tmp_path)
-    done = _run(tmp_path, *args)
+    done = cli_here(*args, cwd=tmp_path)
     assert done.returncode == status, done.stderr
     assert message in done.stderr, done.stderr
     assert "Traceback" not in done.stderr
     assert len(done.stderr.strip().splitlines()) == 1, done.stderr
     assert _tree(tmp_path) == before  # a refused command writes nothing
+
+
+def test_a_fresh_interpreter_refuses_in_one_line_too(tmp_path):
+    # the refusals above run in this interpreter: the installed command's own start
+    (tmp_path / "binary.toml").write_bytes(b"\xff\xfe\x00\x01")
+    done = _run(tmp_path, "run", "binary.toml")
+    assert done.returncode == 2, done.stderr
+    assert done.stderr.startswith("exubrush: error: binary.toml: not UTF-8 text (byte 0)")
+    assert len(done.stderr.splitlines()) == 1, done.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["binary.toml"]
 
 
 @pytest.mark.slow  # a real run
@@ -184,14 +195,14 @@ def test_sigterm_to_the_process_group_then_resume_equals_an_uninterrupted_run(tm
     ("x [mm],y [mm],filaments,diameter [mm]\n0,0,37,1\n", "37 filaments of 0.2 mm need a "
      "tuft of 1.4 mm in hexagonal packing, the tuft is 1 mm"),
 ])
-def test_a_bad_tuft_table_ends_in_one_line_with_exit_2_and_nothing_written(tmp_path, table,
-                                                                             message):
+def test_a_bad_tuft_table_ends_in_one_line_with_exit_2_and_nothing_written(tmp_path, cli_here,
+                                                                             table, message):
     (tmp_path / "head.toml").write_text('name = "t"\n[head]\nlayout = "tufts"\n'
                                         'tuft_table = "tufts.csv"\n')
     if table is not None:
         (tmp_path / "tufts.csv").write_text(table)
     before = _tree(tmp_path)
-    done = _run(tmp_path, "run", "head.toml", "--out", "out")
+    done = cli_here("run", "head.toml", "--out", "out", cwd=tmp_path)
     assert done.returncode == 2, done.stderr
     assert message.format(folder=tmp_path) in done.stderr, done.stderr
     assert "Traceback" not in done.stderr
