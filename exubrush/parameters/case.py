@@ -657,6 +657,12 @@ class Output(Parameters):
         False, "also keep every node's coordinates at shape_interval, for Exudyn's "
         "SolutionViewer (exubrush view)")
 
+    @property
+    def shape_stride(self) -> int:
+        """Force samples per shape sample: shapes are every this many force samples from
+        the first [-]."""
+        return max(1, round(self.shape_interval / self.interval))
+
     def check(self) -> None:
         """Shapes are sampled from the force output, so not more often than it."""
         if self.shape_interval < self.interval:

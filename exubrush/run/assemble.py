@@ -82,21 +82,22 @@ def assemble_results(prepared: PreparedCase, solutions: Sequence[GroupSolution |
     # the groups' bristles joined, then put back in the head's order (groups that can
     # touch each other need not be contiguous ranges)
     order = np.argsort(np.concatenate(prepared.groups))
-    nodes = (np.concatenate([s.nodes[:n] for s in solutions], axis=1)[:, order] if n
+    tips = (np.concatenate([s.tips[:n] for s in solutions], axis=1)[:, order] if n
+            else np.zeros((0, len(prepared.bristles), 3)))
+    rows = np.arange(0, n, case.output.shape_stride)  # the groups' shape samples
+    nodes = (np.concatenate([s.nodes[:len(rows)] for s in solutions], axis=1)[:, order] if n
              else np.zeros((0, len(prepared.bristles), nodes_per_bristle, 3)))
     tip_force = (np.concatenate([s.tip_force[:n] for s in solutions], axis=1)[:, order] if n
                  else np.zeros((0, len(prepared.bristles), 3)))
     completed = (not facts.interrupted and len(ran) == len(solutions)
                  and all(s.completed for s in ran))
     status = "completed" if completed else "interrupted" if facts.interrupted else "failed"
-    stride = max(1, round(case.output.shape_interval / case.output.interval))
-    rows = np.arange(0, n, stride)
     roots = np.array([b.root for b in prepared.bristles])
     # the roots turn with the head about the handle's node (A r, exubrush.world.pose)
     turned = np.array([roots @ rotation_matrix(theta).T for theta in angles[rows]]).reshape(
         len(rows), *roots.shape) if prepared.motion.pose is not None else roots[None, :, :]
     shape_nodes = np.concatenate(
-        [(handle_position[rows][:, None, :] + turned)[:, :, None, :], nodes[rows]],
+        [(handle_position[rows][:, None, :] + turned)[:, :, None, :], nodes],
         axis=2,
     )
     shape_coordinates = None
@@ -132,7 +133,7 @@ def assemble_results(prepared: PreparedCase, solutions: Sequence[GroupSolution |
         shape_time=t[rows],
         shape_nodes=shape_nodes,
         shape_coordinates=shape_coordinates,
-        tip_position=nodes[:, :, -1, :],
+        tip_position=tips,
         tip_force=tip_force,
         metadata=metadata,
         wrench=wrench,

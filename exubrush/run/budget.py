@@ -34,7 +34,7 @@ STEPS_PER_PERIOD = 100
 STEPS_PER_APPROACH = 20
 STEPS_PER_HOLD = 4
 STEPS_PER_CYCLE = 20  # while a sine pose term acts: its drive, not the filaments' answer
-COPIES = 3  # node histories held at once while joining the groups' results
+COPIES = 3  # tip and node histories held at once while joining the groups' results
 DOUBLE = 8  # bytes
 C_INT = 2**31 - 1  # Exudyn's step counter is a C int
 
@@ -93,8 +93,10 @@ def estimate(case, bristles: int, end_time: float, slide_start: float = 0.0) -> 
     """The work of ``case`` with ``bristles`` bristles and ``end_time`` [s], the slide (and
     the pose terms' clock) starting at ``slide_start`` [s]."""
     rows = math.floor(end_time / case.output.interval) + 1
+    shapes = -(-rows // case.output.shape_stride)
     nodes = case.model.segments if case.model.kind == "dfm" else 1
-    memory = float(rows) * bristles * (nodes + 1) * 3 * DOUBLE * COPIES
+    # every tip's position and force at every row; every node (and the root) at the shapes
+    memory = float(rows * 2 + shapes * (nodes + 1)) * bristles * 3 * DOUBLE * COPIES
     if case.output.solution_file:
         coordinates = 6 + bristles * nodes * 7  # handle; Euler parameters: 7 per node
         memory += (math.floor(end_time / case.output.shape_interval) + 1) * coordinates * DOUBLE

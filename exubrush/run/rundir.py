@@ -138,6 +138,7 @@ class RunDirectory:
         self.checkpoint = self.path / CHECKPOINT
         self.fingerprint = case_fingerprint(prepared)
         self.group_sizes = [len(group) for group in prepared.groups]
+        self.shape_stride = prepared.case.output.shape_stride
         self.code = code_identity()
         self.resumed = 0
         self._prepare(overwrite)
@@ -238,8 +239,8 @@ class RunDirectory:
         return int(index)
 
     def _read_group(self, file: Path) -> GroupSolution:
-        arrays = read_npz(file, {"scalars": None, "time": 1, "reaction": 2, "nodes": 4,
-                                 "tip_force": 3}, {"coordinates": 2, "drive_moment": 2})
+        arrays = read_npz(file, {"scalars": None, "time": 1, "reaction": 2, "tips": 3,
+                                 "nodes": 4, "tip_force": 3}, {"coordinates": 2, "drive_moment": 2})
         if arrays["scalars"].dtype.kind != "U" or arrays["scalars"].ndim != 0:
             raise GroupFileError(f"{str(file)!r}: its 'scalars' are not one text")
         try:
@@ -250,10 +251,12 @@ class RunDirectory:
             raise GroupFileError(f"{str(file)!r}: its 'scalars' are not those of a finished "
                                  "group of this exubrush")
         steps, bristles = solution.time.size, self.group_sizes[self._group_index(file)]
+        shapes = -(-steps // self.shape_stride)  # every stride-th time from the first
         moment = solution.drive_moment
         if not (solution.reaction.shape == (steps, 3)
                 and (moment is None or moment.shape == (steps, 3))
-                and solution.nodes.shape[:2] == (steps, bristles)
+                and solution.tips.shape == (steps, bristles, 3)
+                and solution.nodes.shape[:2] == (shapes, bristles)
                 and solution.nodes.shape[3] == 3
                 and solution.tip_force.shape == (steps, bristles, 3)):
             raise GroupFileError(f"{str(file)!r}: its arrays do not fit {steps} times of "

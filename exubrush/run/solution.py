@@ -42,8 +42,14 @@ class GroupSolution:
         Multiples of ``output.interval`` up to the last sane record [s].
     reaction : ndarray (n, 3)
         Drive reaction: the force the handle's coordinates exert on the drive [N].
-    nodes : ndarray (n, bristles, nodes, 3)
-        Bristle node positions, head frame fixed to the surface [mm].
+    tips : ndarray (n, bristles, 3)
+        Each bristle's last node (its tip sphere's centre), head frame fixed to the
+        surface [mm].
+    nodes : ndarray (m, bristles, nodes, 3)
+        Bristle node positions at the shape samples, every ``output.shape_stride``-th time
+        from the first (m = ceil(n / stride)), head frame fixed to the surface [mm]: only
+        the tips are kept at every time (a sonic head's forces need a fine output
+        interval, which every node's history would make gigabytes).
     tip_force : ndarray (n, bristles, 3)
         Contact force of the surface on each tip, head frame [N] (zero for a tip without a
         contact element).
@@ -76,6 +82,7 @@ class GroupSolution:
 
     time: np.ndarray
     reaction: np.ndarray
+    tips: np.ndarray
     nodes: np.ndarray
     tip_force: np.ndarray
     coordinates: np.ndarray | None
@@ -91,7 +98,8 @@ class GroupSolution:
     drive_moment: np.ndarray | None = None
     handle_inertia: list = dataclasses.field(default_factory=lambda: [[0.0] * 3] * 3)
 
-    ARRAYS = ("time", "reaction", "nodes", "tip_force", "coordinates", "drive_moment")
+    ARRAYS = ("time", "reaction", "tips", "nodes", "tip_force", "coordinates",
+              "drive_moment")
 
     @property
     def interrupted(self) -> bool:
@@ -111,8 +119,8 @@ class GroupSolution:
     @classmethod
     def not_solved(cls, message: str) -> GroupSolution:
         """A group that produced nothing (e.g. every worker that ran it died), and why."""
-        return cls(time=np.zeros(0), reaction=np.zeros((0, 3)), nodes=np.zeros((0, 0, 0, 3)),
-                   tip_force=np.zeros((0, 0, 3)), coordinates=None,
+        return cls(time=np.zeros(0), reaction=np.zeros((0, 3)), tips=np.zeros((0, 0, 3)),
+                   nodes=np.zeros((0, 0, 0, 3)), tip_force=np.zeros((0, 0, 3)), coordinates=None,
                    statistics=SolverStatistics(), completed=False, message=message,
                    wall_time=0.0, contacts=0, handle_mass=0.0)
 

@@ -160,6 +160,7 @@ def solve_group(prepared: PreparedCase, selection: tuple[int, ...],
     _, moment = on_output_grid(recorded, moment, case.output.interval)
     _, nodes = on_output_grid(recorded, nodes[:, :, :n].transpose(2, 0, 1, 3),
                               case.output.interval)
+    tips, nodes = nodes[:, :, -1].copy(), nodes[::case.output.shape_stride].copy()
     _, tip_force = on_output_grid(recorded, tip_force[:, :n].transpose(1, 0, 2),
                                   case.output.interval)
     if coordinates is not None:  # the rows up to the last sane sample
@@ -171,6 +172,7 @@ def solve_group(prepared: PreparedCase, selection: tuple[int, ...],
         reaction=reaction,
         drive_moment=moment,
         handle_inertia=scene.handle_inertia.tolist(),
+        tips=tips,
         nodes=nodes,
         tip_force=tip_force,
         coordinates=coordinates,

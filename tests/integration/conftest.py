@@ -5,14 +5,23 @@ import inspect
 import os
 import subprocess
 import sys
+from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
 
+CHECKOUT = Path(__file__).resolve().parents[2]
 
-def _exubrush(*args, timeout=300):
-    return subprocess.run([sys.executable, "-m", "exubrush", *args], capture_output=True,
-                          text=True, timeout=timeout)
+
+def _exubrush(*args, cwd=None, timeout=300):
+    # this checkout's exubrush, as the tests in this interpreter import it (pyproject's
+    # pythonpath), whatever the working directory: not a copy installed elsewhere, whose
+    # numba kernels would compile into a cache of their own
+    environment = {**os.environ, "PYTHONPATH": os.pathsep.join(
+        [str(CHECKOUT), *filter(None, [os.environ.get("PYTHONPATH")])])}
+    return subprocess.run([sys.executable, "-m", "exubrush", *map(str, args)],
+                          capture_output=True, text=True, timeout=timeout, cwd=cwd,
+                          env=environment)
 
 
 def _exubrush_here(*args, cwd=None):
@@ -30,7 +39,8 @@ def _exubrush_here(*args, cwd=None):
 
 @pytest.fixture(scope="session")
 def cli():
-    """Run the ``exubrush`` command line in a fresh interpreter: ``cli("run", ...)``."""
+    """Run the ``exubrush`` command line in a fresh interpreter: ``cli("run", ...)``
+    (``cwd=`` a working directory, ``timeout=`` [s])."""
     return _exubrush
 
 

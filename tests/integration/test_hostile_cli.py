@@ -29,11 +29,6 @@ def _tree(root):
             for p in sorted(root.rglob("*"))}
 
 
-def _run(folder, *args, timeout=300):
-    return subprocess.run([sys.executable, "-m", "exubrush", *args], capture_output=True,
-                          text=True, timeout=timeout, cwd=folder)
-
-
 def _only_changed(before, after, prefix):
     changed = {k for k in set(before) | set(after) if before.get(k) != after.get(k)}
     return all(k == prefix or k.startswith(prefix + os.sep) for k in changed), changed
@@ -96,10 +91,10 @@ def test_a_fault_ends_in_one_line(tmp_path, saved_run, cli_here, args, status, m
     assert _tree(tmp_path) == before  # a refused command writes nothing
 
 
-def test_a_fresh_interpreter_refuses_in_one_line_too(tmp_path):
+def test_a_fresh_interpreter_refuses_in_one_line_too(tmp_path, cli):
     # the refusals above run in this interpreter: the installed command's own start
     (tmp_path / "binary.toml").write_bytes(b"\xff\xfe\x00\x01")
-    done = _run(tmp_path, "run", "binary.toml")
+    done = cli("run", "binary.toml", cwd=tmp_path)
     assert done.returncode == 2, done.stderr
     assert done.stderr.startswith("exubrush: error: binary.toml: not UTF-8 text (byte 0)")
     assert len(done.stderr.splitlines()) == 1, done.stderr
@@ -107,11 +102,11 @@ def test_a_fresh_interpreter_refuses_in_one_line_too(tmp_path):
 
 
 @pytest.mark.slow  # a real run
-def test_a_case_name_never_leads_outside_results(tmp_path):
+def test_a_case_name_never_leads_outside_results(tmp_path, cli):
     work = tmp_path / "work"
     work.mkdir()
     before = _tree(tmp_path)
-    done = _run(work, "run", "orthogonal", *TINY, "--set", "name='../../../x'")
+    done = cli("run", "orthogonal", *TINY, "--set", "name='../../../x'", cwd=work)
     assert done.returncode == 0, done.stderr
     assert (work / "results" / "_.._.._x-dfm" / "run.json").is_file()
     inside, changed = _only_changed(before, _tree(tmp_path), os.path.join("work", "results"))
@@ -162,10 +157,10 @@ def test_a_directory_that_cannot_be_written(tmp_path, monkeypatch):
 
 
 @pytest.mark.slow
-def test_sigterm_to_the_process_group_then_resume_equals_an_uninterrupted_run(tmp_path):
+def test_sigterm_to_the_process_group_then_resume_equals_an_uninterrupted_run(tmp_path, cli):
     small = ["run", "orthogonal", "--segments", "2", "--periods", "0.25", "--quiet",
              "--set", "head.rows=1", "--set", "head.columns=6"]
-    whole = _run(tmp_path, *small, "--out", "whole")
+    whole = cli(*small, "--out", "whole", cwd=tmp_path)
     assert whole.returncode == 0, whole.stderr
     process = subprocess.Popen([sys.executable, "-m", "exubrush", *small, "--out", "cut"],
                                cwd=tmp_path, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
@@ -180,7 +175,7 @@ def test_sigterm_to_the_process_group_then_resume_equals_an_uninterrupted_run(tm
     _, stderr = process.communicate(timeout=60)
     assert process.returncode == 130, stderr
     assert "Traceback" not in stderr
-    resumed = _run(tmp_path, *small, "--out", "cut")
+    resumed = cli(*small, "--out", "cut", cwd=tmp_path)
     assert resumed.returncode == 0, resumed.stderr
     assert "resuming:" in resumed.stderr
     assert ((tmp_path / "cut" / "forces.csv").read_bytes()

@@ -167,14 +167,16 @@ def test_a_resumed_group_keeps_the_coordinates_for_the_viewer(tmp_path):
 
     case = prepare(load_case("orthogonal", ["output.solution_file=true"]))
     solution = GroupSolution(
-        time=np.arange(3.0), reaction=np.zeros((3, 3)), nodes=np.zeros((3, 1, 6, 3)),
-        tip_force=np.ones((3, 1, 3)), coordinates=np.arange(12.0).reshape(3, 4),
+        time=np.arange(3.0), reaction=np.zeros((3, 3)), tips=np.full((3, 1, 3), 2.0),
+        nodes=np.zeros((1, 1, 6, 3)), tip_force=np.ones((3, 1, 3)),
+        coordinates=np.arange(12.0).reshape(3, 4),
         statistics=SolverStatistics(steps=7),
         completed=True, message="", wall_time=0.5, contacts=1, handle_mass=1e-6)
     RunDirectory(tmp_path, case).keep(0, solution)
     stored = RunDirectory(tmp_path, case).stored_groups()[0]
     np.testing.assert_array_equal(stored.coordinates, solution.coordinates)
     np.testing.assert_array_equal(stored.tip_force, solution.tip_force)
+    np.testing.assert_array_equal(stored.tips, solution.tips)
     assert stored.statistics == solution.statistics
     assert (stored.wall_time, stored.contacts, stored.handle_mass) == (0.5, 1, 1e-6)
 

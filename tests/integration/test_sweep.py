@@ -40,11 +40,6 @@ RUNS = ("000-interaction_distance=4", "001-interaction_distance=4.2",
         "002-interaction_distance=4.4")
 
 
-def _exubrush(*args, **options):
-    return subprocess.run([sys.executable, "-m", "exubrush", *args], capture_output=True,
-                          text=True, timeout=600, **options)
-
-
 @pytest.fixture(scope="module")
 def sweep_file(tmp_path_factory):
     path = tmp_path_factory.mktemp("sweep") / "three.toml"
@@ -53,11 +48,11 @@ def sweep_file(tmp_path_factory):
 
 
 @pytest.fixture(scope="module")
-def separate_runs(tmp_path_factory):
+def separate_runs(tmp_path_factory, cli):
     """The three runs, each its own 'exubrush run'."""
     root = tmp_path_factory.mktemp("separate")
     for name, distance in zip(RUNS, DISTANCES, strict=True):
-        done = _exubrush("run", "orthogonal", "--quiet", "--out", str(root / name),
+        done = cli("run", "orthogonal", "--quiet", "--out", str(root / name),
                          *(f"--set={s}" for s in COMMON),
                          f"--set=motion.interaction_distance='{distance}'")
         assert done.returncode == 0, done.stderr
@@ -70,9 +65,9 @@ def _assert_same_forces(sweep_folder, separate_runs):
         assert swept == (separate_runs / name / "forces.csv").read_bytes(), name
 
 
-def test_sweep_equals_separate_runs_bit_for_bit(tmp_path, sweep_file, separate_runs):
+def test_sweep_equals_separate_runs_bit_for_bit(tmp_path, sweep_file, separate_runs, cli):
     out = tmp_path / "sweep"
-    done = _exubrush("sweep", str(sweep_file), "--workers", "2", "--out", str(out),
+    done = cli("sweep", str(sweep_file), "--workers", "2", "--out", str(out),
                      "--quiet")
     assert done.returncode == 0, done.stderr
     assert "local Dask cluster of 2 worker processes; dashboard http" in done.stderr
@@ -97,7 +92,7 @@ def test_sweep_equals_separate_runs_bit_for_bit(tmp_path, sweep_file, separate_r
         cells = row.split(",")
         assert cells[depth] == ""
         assert "" not in cells[:depth] + cells[depth + 1:]
-    again = _exubrush("sweep", str(sweep_file), "--workers", "2", "--out", str(out),
+    again = cli("sweep", str(sweep_file), "--workers", "2", "--out", str(out),
                       "--quiet")
     assert again.returncode == 0 and "(3 done before)" in again.stdout
 
@@ -155,7 +150,7 @@ def test_a_worker_killed_mid_task_loses_and_duplicates_nothing(tmp_path, sweep_f
     _assert_same_forces(tmp_path / "sweep", separate_runs)
 
 
-def test_an_interrupted_sweep_resumes_to_the_same_forces(tmp_path, sweep_file, separate_runs):
+def test_an_interrupted_sweep_resumes_to_the_same_forces(tmp_path, sweep_file, separate_runs, cli):
     out = tmp_path / "sweep"
     process = subprocess.Popen([sys.executable, "-m", "exubrush", "sweep", str(sweep_file),
                                 "--workers", "1", "--out", str(out), "--quiet"],
@@ -172,15 +167,15 @@ def test_an_interrupted_sweep_resumes_to_the_same_forces(tmp_path, sweep_file, s
     assert "interrupted: finished runs are kept" in stderr
     unfinished = [name for name in RUNS if not (out / name / "run.json").is_file()]
     assert unfinished
-    done = _exubrush("sweep", str(sweep_file), "--workers", "1", "--out", str(out), "--quiet")
+    done = cli("sweep", str(sweep_file), "--workers", "1", "--out", str(out), "--quiet")
     assert done.returncode == 0, done.stderr
     assert f"({3 - len(unfinished)} done before)" in done.stdout
     _assert_same_forces(out, separate_runs)
 
 
-def test_run_on_a_dask_cluster_equals_the_process_pool(tmp_path, separate_runs):
+def test_run_on_a_dask_cluster_equals_the_process_pool(tmp_path, separate_runs, cli):
     out = tmp_path / "run"
-    done = _exubrush("run", "orthogonal", "--quiet", "--scheduler", "local", "--workers", "2",
+    done = cli("run", "orthogonal", "--quiet", "--scheduler", "local", "--workers", "2",
                      "--out", str(out), *(f"--set={s}" for s in COMMON),
                      f"--set=motion.interaction_distance='{DISTANCES[1]}'")
     assert done.returncode == 0, done.stderr

@@ -29,9 +29,11 @@ BOUNDED_WORK = [
      "more than limits.bristles = 10,000; to run it anyway, --set limits.bristles=10000000000"),
     (["model.segments=5000"], "model.segments = 5,000 is more than limits.segments = 200; "
      "to run it anyway, --set limits.segments=5000"),
-    (["output.interval='1e-6 s'"], "its recorded results would take about 610 GB, more than "
+    # 48 bristles' tips (position and force) at 25.2e6 rows: 2 x 25.2e6 x 48 x 3 doubles,
+    # three copies
+    (["output.interval='1e-6 s'"], "its recorded results would take about 174 GB, more than "
      "limits.memory = 8 GB; a longer output.interval records less, or --set "
-     "limits.memory='610 GB'"),
+     "limits.memory='175 GB'"),
     (["solver.step_size='1e-9 s'", "solver.minimum_step_size='1e-10 s'"],
      "the run needs at least 25,200,000,000 time steps per system"),
     (["head.rows=3000000000"], "head.rows: 3000000000 does not fit a 32-bit integer "
