@@ -111,6 +111,29 @@ def oscillating_rotating_case() -> Case:
     )
 
 
+# a sonic head (docs/motion.md, "The powered-brush cases", gives the sources): the manual
+# head swung side to side, across the handle, at 31,000 strokes a minute
+SONIC = (258.0, 1.5)  # Hz, amplitude [mm]: 31,000 strokes (half cycles) a minute, 3 mm side to side
+SONIC_STROKE = 4.0  # s, the period of the slow manual stroke along the handle under it
+
+
+def sonic_case() -> Case:
+    """A sonic head: the `manual-brush` head (40 tufts of 37 nylon filaments) swung side to
+    side across the handle (y) by ±1.5 mm at 258 Hz (31,000 strokes a minute, two a cycle)
+    on a slow manual stroke along the handle (±15 mm in 4 s), pressed on the plane at d =
+    8.4 mm, for 0.5 s after the approach. Forces are recorded every 0.25 ms (15 samples a
+    cycle), shapes every 10 ms."""
+    base = manual_brush_case()
+    frequency, amplitude = SONIC
+    swing = SineMotion().replace(axis="y", amplitude=amplitude, frequency=frequency)
+    return base.replace(
+        name="sonic",
+        motion=base.motion.replace(direction="parallel", period=SONIC_STROKE,
+                                   periods=0.5 / SONIC_STROKE, sine=(swing,)),
+        output=base.output.replace(interval=2.5e-4, shape_interval=0.01),
+    )
+
+
 def robot_case() -> Case:
     """The paper's head moved by a robot arm along a rectangle of linear moves with
     right-angle turns (exubrush/data/robot-path.csv, exubrush's illustration: 10 mm/s,
@@ -124,4 +147,5 @@ def robot_case() -> Case:
 BUILT_IN_CASES = {"orthogonal": orthogonal_case, "parallel": parallel_case,
                   "interdental": interdental_case, "crown": crown_case, "tuft": tuft_case,
                   "manual-brush": manual_brush_case,
-                  "oscillating-rotating": oscillating_rotating_case, "robot": robot_case}
+                  "oscillating-rotating": oscillating_rotating_case, "sonic": sonic_case,
+                  "robot": robot_case}

@@ -18,7 +18,11 @@ Each row is a pair (or set) of runs whose wall times are compared with a target:
 - ``oscillating-rotating``: the round head of 703 filaments, approach and 0.5 s of turning,
   filaments passing through each other as the case has it (target: under 600 s; the
   target asks it with contact between the filaments once that is the tufted heads'
-  default).
+  default);
+- ``sonic``: the manual head of 1,480 filaments swung at 258 Hz, approach and 0.5 s of
+  brushing, filaments passing through each other (target: under 600 s, as above);
+  ``sonic window``: the same with 0.05 s of brushing (no target: the row a session can
+  afford, its time per filament and step counts).
 
 Every run is a fresh process (benchmark.run_in_tree) that times ``simulate`` alone.
 ``--code old=/path/to/old/checkout new=.`` runs each row with each source tree in turn
@@ -97,6 +101,12 @@ def rows(folder: Path) -> dict[str, dict]:
         "oscillating-rotating": {
             "runs": {"case": ("oscillating-rotating", [])},
             "figure": lambda w: w["case"], "target": 600.0, "unit": "s"},
+        "sonic": {
+            "runs": {"case": ("sonic", [])},
+            "figure": lambda w: w["case"], "target": 600.0, "unit": "s"},
+        "sonic window": {
+            "runs": {"case": ("sonic", ["motion.periods=0.0125"])},
+            "figure": lambda w: w["case"], "target": float("inf"), "unit": "s"},
     }
 
 
@@ -158,7 +168,8 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--only", nargs="*", metavar="ROW",
                         choices=["tuft window", "tuft period", "filaments", "blade head",
-                                 "tooth row", "oscillating-rotating"])
+                                 "tooth row", "oscillating-rotating", "sonic",
+                                 "sonic window"])
     parser.add_argument("--repeat", type=int, default=1)
     parser.add_argument("--code", nargs="+", metavar="LABEL=SOURCE_TREE")
     parser.add_argument("--out", type=Path,
