@@ -286,6 +286,13 @@ class ResultsError(ValueError):
 REMAKE = "; the result directory is damaged: make the run again (exubrush run with --overwrite)"
 
 
+def _kept_coordinates(metadata: dict) -> bool:
+    """Whether the run record says its run kept every node's coordinates."""
+    output = metadata.get("parameters", {})
+    output = output.get("output", {}) if isinstance(output, dict) else {}
+    return isinstance(output, dict) and output.get("solution_file") is True
+
+
 def read_results(directory: str | Path) -> Results:
     """Read a result directory written by :meth:`Results.save` (forces, shapes, run.json).
 
@@ -327,6 +334,9 @@ def read_results(directory: str | Path) -> Results:
         raise ResultsError(f"{err}{REMAKE}") from None
     if shapes is None:
         shapes = {"time": np.zeros(0), "nodes": np.zeros((0, 0, 0, 3))}
+    elif "coordinates" not in shapes and _kept_coordinates(metadata):
+        raise ResultsError(f"{str(directory / 'shapes.npz')!r} lacks the node coordinates "
+                           f"its run kept (output.solution_file){REMAKE}")
     nodes = shapes["nodes"]
     if nodes.shape[0] != shapes["time"].size or nodes.shape[3] != 3:
         raise ResultsError(f"{str(directory / 'shapes.npz')!r}: its nodes {nodes.shape} do not "

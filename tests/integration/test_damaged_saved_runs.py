@@ -9,6 +9,7 @@ module, its checkpoint kept: each test damages a copy.
 import json
 import shutil
 
+import numpy as np
 import pytest
 from click.testing import CliRunner
 from hypothesis import HealthCheck, given, settings
@@ -61,7 +62,15 @@ def _foreign_npz(path):  # another exubrush file in its place
                      else (path.parent / "shapes.npz").read_bytes())
 
 
+def _without_coordinates(path):  # a zip entry's name damaged: the array is gone
+    with np.load(path) as arrays:
+        kept = {name: arrays[name] for name in arrays.files if name != "coordinates"}
+    with open(path, "wb") as handle:
+        np.savez_compressed(handle, **kept)
+
+
 DAMAGES = {
+    "without coordinates": _without_coordinates,
     "not a zip": lambda path: path.write_text("time,nodes\n0,1\n"),
     "cut short": _truncated,
     "empty": lambda path: path.write_bytes(b""),
@@ -89,6 +98,7 @@ def _refused(args, named):
     ("frames", "tips.npz", "foreign"),
     ("view", "shapes.npz", "cut short"),
     ("view", "tips.npz", "empty"),
+    ("view", "shapes.npz", "without coordinates"),
     ("compare", "tips.npz", "cut short"),
     ("compare", "shapes.npz", "foreign"),
     ("compare", "forces.csv", "garbage"),
