@@ -617,6 +617,11 @@ class Solver(Parameters):
         "a coupled head",
         "text", choices=("auto", "EigenDense", "EXUdense", "EigenSparse"),
     )
+    steps_per_cycle: int = param(
+        20, "while a [[motion.sine]] term acts, the step is at most its cycle over this: 20 "
+            "resolve the drive, not a filament driven near its resonance (about 100 a period "
+            "of the filament's first mode at spectral_radius 0; docs/motion.md)", minimum=4,
+    )
     step_recovery_steps: int = param(
         4, "successful steps after a step reduction before the step may grow again (Exudyn's "
            "default 10; 2 before 0.9.0: through a snap the step grew back and failed again)",

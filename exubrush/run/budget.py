@@ -33,7 +33,6 @@ from dataclasses import dataclass
 STEPS_PER_PERIOD = 100
 STEPS_PER_APPROACH = 20
 STEPS_PER_HOLD = 4
-STEPS_PER_CYCLE = 20  # while a sine pose term acts: its drive, not the filaments' answer
 COPIES = 3  # tip and node histories held at once while joining the groups' results
 DOUBLE = 8  # bytes
 C_INT = 2**31 - 1  # Exudyn's step counter is a C int
@@ -55,10 +54,10 @@ class WorkEstimate:
     memory: float
 
 
-def term_step(frequency: float) -> float:
-    """The largest step [s] while a sine pose term of ``frequency`` [Hz] acts: a
-    :data:`STEPS_PER_CYCLE`-th of its cycle."""
-    return 1.0 / (frequency * STEPS_PER_CYCLE)
+def term_step(case, frequency: float) -> float:
+    """The largest step [s] while a sine pose term of ``frequency`` [Hz] acts: its cycle
+    over ``solver.steps_per_cycle``."""
+    return 1.0 / (frequency * case.solver.steps_per_cycle)
 
 
 def term_windows(case, slide_start: float, end_time: float) -> list[tuple[float, float, float]]:
@@ -70,10 +69,10 @@ def term_windows(case, slide_start: float, end_time: float) -> list[tuple[float,
     ahead = (case.solver.step_recovery_steps + 2) * step
     windows = []
     for term in case.motion.sine:
-        if term_step(term.frequency) < step:
+        if term_step(case, term.frequency) < step:
             start = slide_start + term.start
             end = min(start + term.duration if term.duration else end_time, end_time)
-            windows.append((start - ahead, end, term_step(term.frequency)))
+            windows.append((start - ahead, end, term_step(case, term.frequency)))
     return windows
 
 
@@ -164,10 +163,10 @@ def unresolved(case, motion) -> list[str]:
             found.append(f"motion.sine[{i}] starts {_seconds(entry.start)} after the slide, "
                          f"at or after the run's end ({_seconds(motion.end_time)}): it would "
                          "never act; start it earlier or run longer")
-        fine = term_step(entry.frequency)
+        fine = term_step(case, entry.frequency)
         if fine < case.solver.minimum_step_size:
             found.append(f"motion.sine[{i}] ({entry.frequency:g} Hz) needs steps of at most "
-                         f"{_seconds(fine)} ({STEPS_PER_CYCLE} per cycle), below "
+                         f"{_seconds(fine)} ({case.solver.steps_per_cycle} per cycle), below "
                          f"solver.minimum_step_size {_seconds(case.solver.minimum_step_size)}")
     if step > bound * (1 + 1e-12):  # the tightest scale; the others follow from it
         found.append(f"solver.step_size {_seconds(step)} does not resolve the motion: "

@@ -69,8 +69,8 @@ def sliding_step_largest(case: Case, motion: HeadMotion, tips: list):
 def motion_step_cap(case: Case, motion: HeadMotion, tips: list):
     """The step hook (mbs, t) that sets Exudyn's largest step (exubrush.run.solver.step_cap):
     ``solver.step_size``, larger in the middle of a stroke (:func:`sliding_step_largest`),
-    and no larger than a sine pose term's :data:`~exubrush.run.budget.STEPS_PER_CYCLE`-th
-    of a cycle from the look-ahead before it acts to its end (:func:`term_step_cap`); None
+    and no larger than a sine pose term's cycle over ``solver.steps_per_cycle`` from the
+    look-ahead before it acts to its end (:func:`term_step_cap`); None
     where the step is ``solver.step_size`` throughout."""
     sliding = sliding_step_largest(case, motion, tips)
     term = term_step_cap(case, motion)
