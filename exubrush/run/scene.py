@@ -36,8 +36,12 @@ from exubrush.models.stiffness import buckling_load
 from exubrush.parameters.surface_kinds import SURFACE_KIND
 from exubrush.run.newton import LineSearch, after_step_cut, has_lie_group_nodes
 from exubrush.run.prepared import PreparedCase
-from exubrush.run.solver import fresh_jacobian_after_step_change, linear_solver
-from exubrush.run.step_policy import motion_step_cap
+from exubrush.run.solver import (
+    fresh_jacobian_after_step_change,
+    fresh_jacobian_while,
+    linear_solver,
+)
+from exubrush.run.step_policy import motion_step_cap, term_step_cap
 from exubrush.world.kinematics import handle_coordinates
 from exubrush.world.mesh import frame_with_normal
 from exubrush.world.motion import HeadMotion
@@ -414,6 +418,9 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
     # touching groups renew the Jacobian at every step attempt anyway (solver.dynamic_settings)
     if scene.bristle_contact is None and linear_solver(case.solver) == "EigenSparse":
         scene.step_hooks.append(fresh_jacobian_after_step_change())
+    terms = term_step_cap(case, scene.motion)
+    if terms is not None and scene.bristle_contact is None:  # touching: renewed anyway
+        scene.step_hooks.append(fresh_jacobian_while(lambda t: terms(t) is not None))
     cap = motion_step_cap(case, scene.motion, tips)
     if cap is not None:
         scene.step_hooks.append(cap)

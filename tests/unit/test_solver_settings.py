@@ -9,7 +9,12 @@ import pytest
 from exubrush.parameters.case import Solver
 from exubrush.parameters.io import load_case
 from exubrush.run.prepared import prepare
-from exubrush.run.solver import dynamic_settings, fresh_jacobian_after_step_change, step_cap
+from exubrush.run.solver import (
+    dynamic_settings,
+    fresh_jacobian_after_step_change,
+    fresh_jacobian_while,
+    step_cap,
+)
 
 
 def test_threads_and_linear_solver_reach_exudyn():
@@ -77,6 +82,39 @@ def test_a_new_jacobian_is_asked_for_exactly_when_the_step_size_changes():
         hook(system, end)
         asked.append(system.solverSignalJacobianUpdate)
     assert asked == [False, False, False, True, False, False, True]
+
+
+def test_a_new_jacobian_is_asked_for_at_every_step_while_a_sine_term_acts(tmp_path):
+    # the hook the scene adds for sine pose terms: their windows, look-ahead included
+    # (exubrush.run.step_policy.term_step_cap), here 0.1-0.2 s
+    from exubrush.run.scene import build_scene
+
+    text = "[head]\nrows = 1\ncolumns = 1\n[motion]\nprofile = 'none'\nperiod = '0.2 s'\n" \
+           "periods = 1\napproach_duration = '0.1 s'\nhold_duration = '0.01 s'\n" \
+           "[[motion.sine]]\naxis = 'y'\namplitude = '0.1 mm'\nfrequency = '200 Hz'\n" \
+           "start = '0.05 s'\nduration = '0.05 s'\n"
+    hook = fresh_jacobian_while(lambda t: 0.1 <= t <= 0.2)
+    asked = []
+    for t in (0.05, 0.1, 0.15, 0.2, 0.25):
+        system = _System()
+        hook(system, t)
+        asked.append(system.solverSignalJacobianUpdate)
+    assert asked == [False, True, True, True, False]
+    path = tmp_path / "shaken.toml"
+    path.write_text(text)
+    scene = build_scene(prepare(load_case(str(path))))
+    start = 0.11 + 0.05  # the slide's start (approach and hold), then the term's start
+    ahead = 6 * 2e-3  # (step_recovery_steps + 2) steps of step_size before it
+    flags = []
+    for t in (start - ahead - 1e-3, start - ahead + 1e-3, start + 0.05 - 1e-3,
+              start + 0.05 + 1e-3):
+        system = _System()
+        system.start = t - 1e-4
+        for step_hook in scene.step_hooks:
+            if step_hook.__qualname__.startswith("fresh_jacobian_while"):
+                step_hook(system, t)
+        flags.append(system.solverSignalJacobianUpdate)
+    assert flags == [False, True, True, False]
 
 
 def test_newton_accepts_a_residual_below_the_force_tolerance_or_the_absolute_one():
