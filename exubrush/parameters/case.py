@@ -668,6 +668,11 @@ class Output(Parameters):
         the first [-]."""
         return max(1, round(self.shape_interval / self.interval))
 
+    def shape_samples(self, samples: int) -> int:
+        """Shape samples among ``samples`` force samples: every :attr:`shape_stride`-th
+        from the first [-]."""
+        return -(-samples // self.shape_stride)
+
     def check(self) -> None:
         """Shapes are sampled from the force output, so not more often than it."""
         if self.shape_interval < self.interval:

@@ -69,10 +69,11 @@ def term_windows(case, slide_start: float, end_time: float) -> list[tuple[float,
     ahead = (case.solver.step_recovery_steps + 2) * step
     windows = []
     for term in case.motion.sine:
-        if term_step(case, term.frequency) < step:
+        fine = term_step(case, term.frequency)
+        if fine < step:
             start = slide_start + term.start
             end = min(start + term.duration if term.duration else end_time, end_time)
-            windows.append((start - ahead, end, term_step(case, term.frequency)))
+            windows.append((start - ahead, end, fine))
     return windows
 
 
@@ -92,7 +93,7 @@ def estimate(case, bristles: int, end_time: float, slide_start: float = 0.0) -> 
     """The work of ``case`` with ``bristles`` bristles and ``end_time`` [s], the slide (and
     the pose terms' clock) starting at ``slide_start`` [s]."""
     rows = math.floor(end_time / case.output.interval) + 1
-    shapes = -(-rows // case.output.shape_stride)
+    shapes = case.output.shape_samples(rows)
     nodes = case.model.segments if case.model.kind == "dfm" else 1
     # every tip's position and force at every row; every node (and the root) at the shapes
     memory = float(rows * 2 + shapes * (nodes + 1)) * bristles * 3 * DOUBLE * COPIES

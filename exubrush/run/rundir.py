@@ -138,7 +138,7 @@ class RunDirectory:
         self.checkpoint = self.path / CHECKPOINT
         self.fingerprint = case_fingerprint(prepared)
         self.group_sizes = [len(group) for group in prepared.groups]
-        self.shape_stride = prepared.case.output.shape_stride
+        self.output = prepared.case.output
         self.code = code_identity()
         self.resumed = 0
         self._prepare(overwrite)
@@ -251,7 +251,7 @@ class RunDirectory:
             raise GroupFileError(f"{str(file)!r}: its 'scalars' are not those of a finished "
                                  "group of this exubrush")
         steps, bristles = solution.time.size, self.group_sizes[self._group_index(file)]
-        shapes = -(-steps // self.shape_stride)  # every stride-th time from the first
+        shapes = self.output.shape_samples(steps)
         moment = solution.drive_moment
         if not (solution.reaction.shape == (steps, 3)
                 and (moment is None or moment.shape == (steps, 3))
