@@ -112,6 +112,11 @@ def run(case, model, segments, periods, out, overrides, overwrite, quiet, preset
                    "bristles cannot reach the surface at motion.interaction_distance = "
                    f"{parameters.motion.interaction_distance:g} mm; they get no contact",
                    err=True)
+    twins = len(prepared.groups) - len(prepared.solved_groups)
+    if twins:
+        click.echo(f"{len(prepared.solved_groups)} of {len(prepared.groups)} bristle systems to "
+                   f"solve: the other {twins} are twins of those, moving alike along the plane "
+                   "(solver.share_identical)", err=True)
     from exubrush.execution.signals import signals_redirected
     from exubrush.run.rundir import RunDirectory, RunDirectoryError, default_directory
     from exubrush.simulation import simulate
@@ -146,6 +151,11 @@ def run(case, model, segments, periods, out, overrides, overwrite, quiet, preset
                    f"exceeds the physical bound {sanity['normal_force_bound_N']:.4g} N (every "
                    "bristle straight and fully compressed, x2): the result is not physical; "
                    "see run.json 'sanity'", err=True)
+    retried = meta["derived"].get("systems_retried", 0)
+    if retried:
+        click.echo(f"exubrush: note: {retried} bristle system(s) failed with modified Newton "
+                   "and were solved again with solver.modified_newton = false (run.json "
+                   "'derived')", err=True)
     if meta["status"] == "completed":
         store.close()
         click.echo(f"completed: {meta['simulated_time_s']:.2f} s simulated in "
@@ -233,10 +243,10 @@ def sweep(sweep_file, out, scheduler, workers, retry_failed, quiet, example):
         click.echo(f"exubrush: warning: {warning}", err=True)
     execution = plan.execution
     label = "--scheduler" if scheduler else f"{Path(sweep_file).name}: execution.scheduler"
-    groups = sum(len(case.groups) for case in prepared)
+    groups = sum(len(case.solved_groups) for case in prepared)
+    seconds = sum(c.motion.end_time * len(group) for c in prepared for _, group in c.solved_groups)
     click.echo(f"sweep {plan.name}: {len(plan.runs)} runs, {groups} bristle groups, "
-               f"{sum(c.motion.end_time * len(c.bristles) for c in prepared):.4g} "
-               f"bristle-seconds to simulate; folder {folder}/", err=True)
+               f"{seconds:.4g} bristle-seconds to simulate; folder {folder}/", err=True)
     try:
         with (signals_redirected(signal.SIG_IGN),
               _executor(scheduler or execution.scheduler, workers or execution.workers,

@@ -50,8 +50,8 @@ def simulate(case: Case | PreparedCase, progress: bool = True, workers: int | No
     """
     prepared = case if isinstance(case, PreparedCase) else prepare(case)
     tasks = [SolveTask(prepared, index, selection)
-             for index, selection in enumerate(prepared.groups)]
-    solutions = [None] * len(tasks)
+             for index, selection in prepared.solved_groups]
+    solutions = [None] * len(prepared.groups)
     for index, stored in (directory.stored_groups() if directory else {}).items():
         solutions[index] = stored
     todo = [task for task in tasks if solutions[task.index] is None]

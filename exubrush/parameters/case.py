@@ -633,6 +633,10 @@ class Solver(Parameters):
         "not touch each other); coupled: the whole head as one system",
         "text", choices=("per-bristle", "coupled"),
     )
+    share_identical: bool = param(
+        True, "solve once the bristles that differ only by where their roots sit, on a plane "
+              "and a head that does not turn, without contact between bristles (a tuft's "
+              "filaments; exubrush.run.twins)")
     threads: int = param(
         1, "Exudyn threads for a coupled head (needs contact.backend exudyn-builtin)",
         minimum=1,

@@ -20,6 +20,7 @@ from exubrush.parameters.fields import to_plain
 from exubrush.run.prepared import PreparedCase
 from exubrush.run.solution import GroupSolution, SolverStatistics
 from exubrush.run.solution_files import head_coordinates
+from exubrush.run.twins import with_twins
 from exubrush.util.exudyn_build import build_in_use
 from exubrush.util.provenance import code_identity, package_version
 from exubrush.util.references import run_references
@@ -64,6 +65,9 @@ def assemble_results(prepared: PreparedCase, solutions: Sequence[GroupSolution |
     ``status`` is "failed" or "interrupted" with the reason in ``message``.
     """
     case = prepared.case
+    solved = [s for s, (i, _) in zip(solutions, enumerate(prepared.groups), strict=True)
+              if s is not None and (not prepared.stand_ins or prepared.stand_ins[i] == i)]
+    solutions = with_twins(prepared, solutions)
     ran = [s for s in solutions if s is not None]
     n = min(len(s.time) for s in ran) if len(ran) == len(solutions) else 0
     t = ran[0].time[:n] if ran else np.zeros(0)
@@ -109,14 +113,14 @@ def assemble_results(prepared: PreparedCase, solutions: Sequence[GroupSolution |
         "case": case.name,
         "model": case.model.kind,
         "parameters": to_plain(case),
-        "derived": _derived(prepared, ran, facts),
+        "derived": _derived(prepared, ran, solved, facts),
         "versions": {**code_identity(), "exudyn": package_version("exudyn"),
                      "exudyn_build": build_in_use(), "python": platform.python_version()},
         "references": run_references(case),
-        "solver_statistics": _statistics(ran),
+        "solver_statistics": _statistics(solved),
         "sanity": {"peak_normal_force_N": peak, "normal_force_bound_N": bound,
                    "within_bound": peak <= bound},
-        "solver_wall_time_s_sum": sum(s.wall_time for s in ran),
+        "solver_wall_time_s_sum": sum(s.wall_time for s in solved),
         "wall_time_s": facts.wall_time,
         "simulated_time_s": float(t[-1]) if n else 0.0,
         "status": status,
@@ -140,25 +144,31 @@ def assemble_results(prepared: PreparedCase, solutions: Sequence[GroupSolution |
     )
 
 
-def _derived(prepared: PreparedCase, ran: list[GroupSolution], facts: RunFacts) -> dict:
+def _derived(prepared: PreparedCase, ran: list[GroupSolution], solved: list[GroupSolution],
+             facts: RunFacts) -> dict:
+    """What the run derived from its parameters and how its systems went (``ran``: every
+    group's record there is, twins' included; ``solved``: those of the groups solved)."""
     case, motion = prepared.case, prepared.motion
+    systems = len(prepared.solved_groups)
     derived = {
         "bristles": len(prepared.bristles),
         "contact_elements": sum(s.contacts for s in ran),
         "partition": case.solver.partition,
-        "systems_solved": len(prepared.groups),
-        "systems_finished": sum(bool(s.completed) for s in ran),
+        "systems_solved": systems,
+        "twins_not_solved": len(prepared.groups) - systems,
+        "systems_finished": sum(bool(s.completed) for s in solved),
+        "systems_retried": sum(bool(s.retried) for s in solved),
         "systems_resumed": facts.resumed,
-        "worker_processes": min(facts.workers, len(prepared.groups)),
+        "worker_processes": min(facts.workers, systems),
         "approach_distance_mm": motion.approach_distance,
         "slide_start_s": motion.slide_start,
         "end_time_s": motion.end_time,
     }
     if case.contact.between_bristles:
         derived["bristle_groups"] = [list(g) for g in prepared.groups]
-        derived["bristle_contacts_max"] = sum(s.bristle_contacts_max for s in ran)
-        derived["bristle_contacts_mean"] = sum(s.bristle_contacts_mean for s in ran)
-        derived["bristle_overlap_max_mm"] = max((s.bristle_overlap_max for s in ran),
+        derived["bristle_contacts_max"] = sum(s.bristle_contacts_max for s in solved)
+        derived["bristle_contacts_mean"] = sum(s.bristle_contacts_mean for s in solved)
+        derived["bristle_overlap_max_mm"] = max((s.bristle_overlap_max for s in solved),
                                                 default=0.0)
     if prepared.prb is not None:
         derived["prb_gamma"] = prepared.prb.gamma
@@ -168,10 +178,10 @@ def _derived(prepared: PreparedCase, ran: list[GroupSolution], facts: RunFacts) 
     return derived
 
 
-def _statistics(ran: list[GroupSolution]) -> dict[str, int]:
-    total = functools.reduce(lambda a, b: a + b, (s.statistics for s in ran),
+def _statistics(solved: list[GroupSolution]) -> dict[str, int]:
+    total = functools.reduce(lambda a, b: a + b, (s.statistics for s in solved),
                              SolverStatistics())
-    return total.__dict__.copy() if ran else {}
+    return total.__dict__.copy() if solved else {}
 
 
 def stop_message(case, solutions: Sequence[GroupSolution | None], interrupted: bool) -> str:

@@ -89,6 +89,9 @@ class PreparedCase:
         contact element).
     mesh : MeshSurface or None
         The surface's triangle mesh (surface.kind "mesh"), read and checked once.
+    stand_ins : tuple of int
+        Per group, the group whose solve stands for it: its own index, or a twin's
+        (exubrush.run.twins); empty: every group is solved.
     """
 
     case: Case
@@ -104,6 +107,13 @@ class PreparedCase:
     warnings: tuple[str, ...] = ()
     reaching: tuple[bool, ...] = ()
     mesh: MeshSurface | None = None
+    stand_ins: tuple[int, ...] = ()
+
+    @property
+    def solved_groups(self) -> list[tuple[int, tuple[int, ...]]]:
+        """(index, bristle indices) of each group that is solved: all but the twins."""
+        return [(i, group) for i, group in enumerate(self.groups)
+                if not self.stand_ins or self.stand_ins[i] == i]
 
     @property
     def slide_axis(self) -> np.ndarray:
@@ -186,6 +196,7 @@ def prepare(case: Case) -> PreparedCase:
             unreachable_tufts(case, bristles, reaching)) + tuple(coupled_warning(case, groups)),
         reaching=reaching,
         mesh=mesh,
+        stand_ins=stand_ins(case, bristles, groups, motion),
     )
 
 
@@ -309,3 +320,27 @@ def bristle_groups(case: Case, bristles) -> tuple[tuple[int, ...], ...]:
     if case.contact.between_bristles:
         return touching_groups(list(bristles))
     return tuple((i,) for i in range(count))
+
+
+def stand_ins(case, bristles, groups, motion) -> tuple[int, ...]:
+    """Per group of ``groups`` (tuples of indices into ``bristles``), the index of the group
+    whose solve stands for it: its own, or the first group whose bristle is its twin, alike
+    in all but where its root sits on the plane (exubrush.run.twins says when that is
+    exact)."""
+    own = tuple(range(len(groups)))
+    turns = motion.pose is not None and motion.pose.turns
+    if (not case.solver.share_identical or case.surface.kind != "plane" or turns
+            or case.solver.partition != "per-bristle" or case.contact.between_bristles):
+        return own
+    first: dict[tuple, int] = {}
+    return tuple(first.setdefault(_twin_key(bristles[group[0]]), index) if len(group) == 1
+                 else index for index, group in enumerate(groups))
+
+
+def _twin_key(bristle) -> tuple:
+    """Everything of a bristle that its motion relative to the plane depends on: all but
+    its root's position along the plane (exact floats: twins are built by the same
+    operations)."""
+    return (float(bristle.root[2]), bristle.frame.tobytes(), bristle.length,
+            bristle.tip_radius, bristle.section, bristle.width, bristle.height, bristle.shape,
+            bristle.material)

@@ -277,15 +277,15 @@ def _plain_scalars(solution: GroupSolution) -> bool:
     """Whether a group read back has the scalar types it was written with."""
     numbers = [getattr(solution, f.name) for f in dataclasses.fields(solution)
                if f.name not in (*solution.ARRAYS, "statistics", "completed", "message",
-                                 "handle_inertia")]
+                                 "handle_inertia", "retried")]
     numbers += list(dataclasses.astuple(solution.statistics))
     inertia = solution.handle_inertia
     if not (isinstance(inertia, list) and len(inertia) == 3
             and all(isinstance(row, list) and len(row) == 3 for row in inertia)):
         return False
     numbers += [n for row in inertia for n in row]
-    return (isinstance(solution.completed, bool) and isinstance(solution.message, str)
-            and all(isinstance(n, int | float) and not isinstance(n, bool) for n in numbers))
+    return (isinstance(solution.completed, bool) and isinstance(solution.retried, bool)
+            and isinstance(solution.message, str) and all(isinstance(n, int | float) and not isinstance(n, bool) for n in numbers))
 
 
 def _temporaries(names: set[str]) -> set[str]:

@@ -58,9 +58,11 @@ HANDLE_DENSITY = 1.2e-9  # t/mm³ (acrylic-like)
 # a head that vibrates or turns (pose terms) gets a handle this much lighter: its m·a is
 # removed exactly, but the drive's reaction carries the time integration's error of it,
 # a share that falls with the step squared. A 0.58 g handle shaken at 258 Hz by 1.5 mm
-# (2.3 N of m·a) left 0.13 N RMS of error at 20 steps a cycle in a filament's 7.5 mN
-# (docs/motion.md, "The head's force and moment")
-POSED_HANDLE_LIGHTER = 1e-3
+# (2.3 N of m·a) left 0.13 N RMS of error at 20 steps a cycle in a filament's 7.5 mN; a
+# thousandth of it still 1.7 mN at single samples against 1.2 mN RMS of side force, a
+# millionth 2 µN, with the same steps and Newton iterations (docs/motion.md, "The head's
+# force and moment")
+POSED_HANDLE_LIGHTER = 1e-6
 
 
 class ContactSensor(NamedTuple):

@@ -78,6 +78,9 @@ class GroupSolution:
         (exubrush.world.kinematics.head_moment); None where a group file lacks it.
     handle_inertia : list
         The handle's inertia about its centre, body frame, as nested lists [t·mm²].
+    retried : bool
+        Whether the group failed and was solved a second time with a full Newton
+        (exubrush.run.solve.solve_group).
     """
 
     time: np.ndarray
@@ -97,6 +100,7 @@ class GroupSolution:
     bristle_overlap_max: float = 0.0
     drive_moment: np.ndarray | None = None
     handle_inertia: list = dataclasses.field(default_factory=lambda: [[0.0] * 3] * 3)
+    retried: bool = False
 
     ARRAYS = ("time", "reaction", "tips", "nodes", "tip_force", "coordinates",
               "drive_moment")

@@ -184,10 +184,10 @@ def run_sweep(plan: SweepPlan, folder: str | Path, executor: Executor,
         state.solutions = [stored.get(i) for i in range(len(state.prepared.groups))]
         state.returned = len(stored)
         tasks += [SolveTask(state.prepared, i, selection, run=number)
-                  for i, selection in enumerate(state.prepared.groups) if i not in stored]
-        if state.returned == len(state.solutions):
+                  for i, selection in state.prepared.solved_groups if i not in stored]
+        if state.returned == len(state.prepared.solved_groups):
             _finish(state, executor)
-    total = sum(s.prepared.motion.end_time * len(s.prepared.groups) for s in states
+    total = sum(s.prepared.motion.end_time * len(s.prepared.solved_groups) for s in states
                 if s.store is not None)
     done = sum(s.prepared.motion.end_time * s.returned for s in states if s.store is not None)
     bar = SimulatedTimeBar(total, 1, f"sweep {plan.name}", progress,
@@ -204,7 +204,7 @@ def run_sweep(plan: SweepPlan, folder: str | Path, executor: Executor,
         state.returned += 1
         if solution.completed:
             state.store.keep(task.index, solution)
-        if state.returned == len(state.solutions):
+        if state.returned == len(state.prepared.solved_groups):
             _finish(state, executor)
             bar.note(_runs_note(states))
 

@@ -320,6 +320,12 @@ class HeadPose:
         return max((term.end_time for term in self.terms), default=0.0)
 
     @property
+    def turns(self) -> bool:
+        """Whether any term ever turns the head (a rate on rx, ry or rz; every term starts
+        at 0, so without one the angles stay 0)."""
+        return bool(np.any(self.peak_rate[3:] > 0.0))
+
+    @property
     def peak_rate(self) -> np.ndarray:
         """Upper bound of |rate| per coordinate (6,) [mm/s, rad/s]: the sum of the terms'
         (exact for a single term whose own is)."""

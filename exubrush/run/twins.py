@@ -1,0 +1,83 @@
+"""Bristles that need no solve of their own: twins of one that is solved.
+
+The plane is the same everywhere along itself. Two bristles alike in everything (shape,
+material, frame, the height of their roots) but where their roots sit on the head, on a
+head that does not turn, move relative to the plane in the same way: Exudyn would solve
+the same equations in coordinates shifted along the plane. Such twins are solved once
+(``solver.share_identical``, default on; exubrush.run.prepared.stand_ins finds them): the
+group solved first stands in for the others, and each twin's record is its stand-in's with
+the positions shifted and the moment of the shifted force added (:func:`twin_solution`).
+The filaments of a tuft are twins (they share the tuft's root tilt,
+exubrush.models.geometry), so the 1,480 filaments of the ``sonic`` head take 40 solves.
+
+Twins move alike, as their equations do. Solved apart, they drift apart by the solver's
+tolerance, and where a pressed filament is near a snap that drift decides which of them
+snaps: the tuft's filaments then spread over different paths (docs/decisions/0022).
+
+Each condition is necessary:
+
+- ``surface.kind = "plane"``: a tooth row, a cylinder, a sphere or a mesh changes along
+  itself;
+- ``solver.partition = "per-bristle"`` and no contact between bristles: a twin must be
+  alone in its system, touching nothing but the surface;
+- no pose term turns the head (exubrush.world.pose.HeadPose.turns): a turn carries a shift
+  along the plane out of it, or moves the twins' roots along different paths.
+
+Gravity is uniform, the contact law and friction depend only on the tip's height above the
+plane and its velocities, and the handle of each group is the same, so nothing else tells
+twins apart. A test solves twins both ways (tests/integration/test_twins.py).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Sequence
+
+import numpy as np
+
+from exubrush.run.solution import GroupSolution, SolverStatistics
+from exubrush.world.kinematics import handle_history
+
+
+def twin_solution(source: GroupSolution, shift: np.ndarray,
+                  acceleration: np.ndarray) -> GroupSolution:
+    """The record of a twin whose root lies ``shift`` [mm] from ``source``'s, along the plane.
+
+    Forces, tip forces and coordinates (displacements from each body's reference position)
+    are the source's; tips and nodes move by ``shift``. The bristle's loads on the handle act
+    ``shift`` further along, so the head's moment about the handle's node gains shift × f,
+    f = −reaction − m a the twin's force on the surface (exubrush.world.kinematics.
+    head_force); as the head does not turn, its moment is −λ of the drive's rotation
+    coordinates (exubrush.world.kinematics.head_moment), so λ loses shift × f.
+    ``acceleration`` is the handle's (n, 3) [mm/s²] at the source's times (at least).
+    Nothing was solved for the twin: its statistics and wall time are zero.
+    """
+    moment = source.drive_moment
+    if moment is not None:
+        force = -source.reaction - source.handle_mass * acceleration[:len(source.time)]
+        moment = moment - np.cross(shift, force)
+    return dataclasses.replace(source, tips=source.tips + shift, nodes=source.nodes + shift,
+                               drive_moment=moment, statistics=SolverStatistics(),
+                               wall_time=0.0)
+
+
+def with_twins(prepared, solutions: Sequence[GroupSolution | None]
+               ) -> list[GroupSolution | None]:
+    """``solutions`` (one per group, None where not solved) with each twin's record made
+    from its stand-in's (None while the stand-in has none)."""
+    sources = prepared.stand_ins
+    complete = list(solutions)
+    twins = [i for i, source in enumerate(sources) if source != i]
+    if not twins:
+        return complete
+    longest = max((len(s.time) for s in solutions if s is not None), default=0)
+    times = next((s.time for s in solutions if s is not None and len(s.time) == longest),
+                 np.zeros(0))
+    _, _, acceleration = handle_history(prepared.motion, prepared.slide_axis, times)
+    for index in twins:
+        source = solutions[sources[index]]
+        if source is not None:
+            root = prepared.bristles[prepared.groups[index][0]].root
+            shift = root - prepared.bristles[prepared.groups[sources[index]][0]].root
+            complete[index] = twin_solution(source, shift, acceleration)
+    return complete

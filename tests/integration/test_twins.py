@@ -1,0 +1,106 @@
+"""Twins (exubrush.run.twins): a tuft's filaments solved once give what solving each gives.
+
+The head is two tufts of seven filaments, swung side to side at 258 Hz on a slow stroke
+along the handle, the tips pressed just onto the plane (0.05 mm): near enough to a real
+brushing to load every output (forces, moments about the head's centre, tip forces, tips,
+shapes, coordinates), and calm enough that twins solved apart stay together. Where a
+filament is near a snap they part, by the solver's tolerance amplified (docs/decisions/
+0022): with a 0.1 s approach, whose ringing the swing's sudden start meets, the filaments
+of a tuft solved apart part by 0.05 mm, and so do they from the twins solved once.
+"""
+
+import numpy as np
+import pytest
+
+from exubrush.parameters.io import load_case
+from exubrush.run.prepared import prepare
+from exubrush.run.solve import solve_group
+from exubrush.run.twins import twin_solution
+from exubrush.simulation import simulate
+from exubrush.world.kinematics import handle_history
+
+CASE = """name = "twins"
+[head]
+layout = "tufts"
+[[head.tufts]]
+x = "-1.5 mm"
+filaments = 7
+diameter = "0.7 mm"
+[[head.tufts]]
+x = "1.5 mm"
+y = "0.4 mm"
+filaments = 7
+diameter = "0.7 mm"
+[motion]
+direction = "parallel"
+interaction_distance = "10.45 mm"
+approach_duration = "0.5 s"
+hold_duration = "0.02 s"
+amplitude = "15 mm"
+period = "4 s"
+periods = 0.005
+[[motion.sine]]
+axis = "y"
+amplitude = "1.5 mm"
+frequency = "258 Hz"
+ramp_cycles = 2
+[output]
+interval = "0.25 ms"
+shape_interval = "2 ms"
+solution_file = true
+"""
+
+
+@pytest.mark.slow  # about 15 s: 16 one-filament solves, 0.02 s of them at 0.19 ms steps
+def test_twins_solved_once_give_what_solving_each_gives(tmp_path):
+    path = tmp_path / "twins.toml"
+    path.write_text(CASE)
+    once, each = (simulate(load_case(str(path), [f"solver.share_identical={share}"]),
+                           progress=False, workers=2) for share in ("true", "false"))
+    assert once.metadata["status"] == each.metadata["status"] == "completed"
+    assert once.metadata["derived"]["systems_solved"] == 2  # one per tuft: its own tilt
+    assert once.metadata["derived"]["twins_not_solved"] == 12
+    assert each.metadata["derived"]["systems_solved"] == 14
+    assert once.metadata["derived"]["contact_elements"] == 14
+    np.testing.assert_array_equal(once.time, each.time)
+
+    def agree(a, b, share):
+        # each solve is exact only to Newton's tolerances (solver.relative_tolerance 1e-6,
+        # force_tolerance 5e-4 of a filament's buckling load), so twins solved apart differ
+        # by that much (measured: 6e-6 of the force, 3e-5 of the moment); a twin moved by
+        # the wrong shift, or missing its moment, is off by a tenth or more
+        np.testing.assert_allclose(a, b, atol=share * np.abs(b).max())
+
+    agree(once.normal_force, each.normal_force, 1e-4)
+    agree(once.tangential_force, each.tangential_force, 1e-4)
+    for name in ("force", "moment", "head_force", "head_moment"):
+        agree(getattr(once.wrench, name), getattr(each.wrench, name), 3e-4)
+    agree(once.tip_force, each.tip_force, 3e-4)
+    # positions [mm]: the swing moves every tip by 1.5 mm, the roots lie up to 3.2 mm apart
+    np.testing.assert_allclose(once.tip_position, each.tip_position, atol=1e-5)
+    np.testing.assert_allclose(once.shape_nodes, each.shape_nodes, atol=1e-5)
+    np.testing.assert_allclose(once.shape_coordinates, each.shape_coordinates, atol=1e-5)
+
+
+@pytest.mark.slow  # about 3 s: two one-filament solves
+def test_a_twin_made_from_its_stand_in_is_the_twin_solved(tmp_path):
+    path = tmp_path / "twins.toml"
+    path.write_text(CASE)
+    prepared = prepare(load_case(str(path)))
+    twin = len(prepared.groups) - 1  # an outer filament of the second tuft
+    source = prepared.stand_ins[twin]
+    assert source != twin
+    made_from, solved = (solve_group(prepared, prepared.groups[i]) for i in (source, twin))
+    shift = prepared.bristles[twin].root - prepared.bristles[source].root
+    assert np.hypot(*shift[:2]) > 0.2  # mm: a shift whose moment shows
+    _, _, acceleration = handle_history(prepared.motion, prepared.slide_axis, made_from.time)
+    made = twin_solution(made_from, shift, acceleration)
+    np.testing.assert_array_equal(made.time, solved.time)
+    # to Newton's tolerance, as above; the shift's moment is a tenth of the twin's moment
+    peak = np.abs(solved.drive_moment).max()
+    assert np.abs(np.cross(shift, solved.reaction)).max() > 0.1 * peak
+    np.testing.assert_allclose(made.drive_moment, solved.drive_moment, atol=3e-4 * peak)
+    np.testing.assert_allclose(made.reaction, solved.reaction,
+                               atol=1e-4 * np.abs(solved.reaction).max())
+    for name in ("tips", "nodes", "coordinates"):
+        np.testing.assert_allclose(getattr(made, name), getattr(solved, name), atol=1e-5)
