@@ -7,6 +7,9 @@ at a stroke reversal, and the solver jams. Each root is therefore tilted by
 seeded uniform distribution, so two runs with the same seed are identical and
 ``root_tilt = 0`` restores the ideal head. The filaments of a tuft share one direction, so
 that filaments packed side by side start parallel instead of leaning into each other.
+``Head.tilt_pattern = "radial"`` tilts every root away from the head's centre instead: a
+round head then stays symmetric under its turns, and filaments the same distance from
+the centre are twins under them (exubrush.run.twins).
 """
 
 from __future__ import annotations
@@ -21,6 +24,9 @@ from exubrush.models.sections import SectionProperties, section_properties
 from exubrush.parameters.case import BristleEntry, Head, Material
 from exubrush.util.pair_search import pairs_within
 
+# a root this close to the head's centre [mm] has no direction away from it (tilt_pattern
+# "radial"): it tilts in its random direction
+RADIAL_CENTRE = 1e-9
 # bristle frame (x root->tip, y along the head, z = x × y) in the head frame, untilted
 UPRIGHT_FRAME = np.array([[0.0, 1.0, 0.0], [0.0, 0.0, -1.0], [-1.0, 0.0, 0.0]])
 
@@ -177,14 +183,22 @@ def head_bristles(head: Head) -> list[BristleGeometry]:
     bristles = []
     tuft_directions: dict[int, float] = {}
     for entry, material, tuft in _entries(head):
-        frame = (
-            rotation_about([1.0, 0.0, 0.0], entry.tilt_x)
-            @ rotation_about([0.0, 1.0, 0.0], entry.tilt_y)
-            @ UPRIGHT_FRAME
-        )
+        upright = UPRIGHT_FRAME
         # the filaments of a tuft share one direction: they start parallel, as they touch
         direction = (rng.uniform(0.0, 2.0 * np.pi) if tuft is None
                      else tuft_directions.setdefault(tuft, rng.uniform(0.0, 2.0 * np.pi)))
+        if head.tilt_pattern == "radial" and np.hypot(entry.x, entry.y) > RADIAL_CENTRE:
+            # about the tangent of the root's circle around the centre, the tip leaning
+            # out; the section turned with the root's polar angle, so that the whole frame
+            # turns with the head's symmetry
+            polar = float(np.arctan2(entry.y, entry.x))
+            direction = polar - 0.5 * np.pi
+            upright = rotation_about([0.0, 0.0, 1.0], polar) @ UPRIGHT_FRAME
+        frame = (
+            rotation_about([1.0, 0.0, 0.0], entry.tilt_x)
+            @ rotation_about([0.0, 1.0, 0.0], entry.tilt_y)
+            @ upright
+        )
         if head.root_tilt > 0.0:
             tilt_axis = np.array([np.cos(direction), np.sin(direction), 0.0])
             frame = rotation_about(tilt_axis, head.root_tilt) @ frame

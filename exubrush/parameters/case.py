@@ -166,6 +166,13 @@ class Head(Parameters):
         "symmetry breaking: each root is tilted by this angle in a seeded random direction",
         "rad", "deg", minimum=0.0, below=math.radians(30.0),
     )
+    tilt_pattern: str = param(
+        "random", "direction of each root's tilt (root_tilt): random = a seeded random "
+                  "direction per bristle, shared by a tuft's filaments; radial = away from "
+                  "the head's centre, the section turned with the root's polar angle (a "
+                  "root at the centre: a seeded random direction), so that a head "
+                  "symmetric under turns about its centre stays so",
+        "text", choices=("random", "radial"))
     seed: int = param(1, "seed of the root-tilt directions and of random tuft packings",
                       minimum=0)
     tuft_table: str = param("", "tufts: CSV table of the tufts, one row per tuft, units in "

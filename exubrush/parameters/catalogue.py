@@ -95,7 +95,9 @@ def oscillating_rotating_case() -> Case:
     """An oscillating-rotating round head: 19 tufts of the `tuft` case (37 nylon
     filaments of 0.2 mm in 1.6 mm holes) in a centre tuft and rings of 6 and 12 on an 11
     mm disc, pressed on the plane at d = 8.4 mm and turned ±20° about its normal at 7,600
-    oscillations a minute for 0.5 s after the approach (no stroke)."""
+    oscillations a minute for 0.5 s after the approach (no stroke). Its roots tilt away
+    from its centre (``head.tilt_pattern = "radial"``): the head stays symmetric under its
+    turn, and filaments as far from the centre are twins (exubrush.run.twins)."""
     base = tuft_case()
     tufts = tuple(
         Tuft(name=f"ring{ring}-{k + 1}", x=radius * math.cos(2 * math.pi * k / count),
@@ -105,7 +107,7 @@ def oscillating_rotating_case() -> Case:
     turn = SineMotion().replace(axis="rz", amplitude=0.0, angle=angle, frequency=frequency)
     return base.replace(
         name="oscillating-rotating",
-        head=base.head.replace(tufts=tufts),
+        head=base.head.replace(tufts=tufts, tilt_pattern="radial"),
         motion=base.motion.replace(profile="none", period=0.1, periods=5.0, sine=(turn,)),
         output=base.output.replace(interval=1e-3, shape_interval=0.01),
     )

@@ -11,6 +11,7 @@ unreadable slide CSV) are raised here as :class:`~exubrush.parameters.fields.Par
 from __future__ import annotations
 
 import hashlib
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -34,6 +35,11 @@ from exubrush.world.mesh import MeshError, MeshSurface, read_mesh
 from exubrush.world.motion import HeadMotion, TabulatedSlide, head_motion
 from exubrush.world.pose import with_pose
 from exubrush.world.surfaces import highest_near, to_surface_frame
+
+# twins under a turning head: distances and frames compared to this many decimals [mm, -]
+TURN_KEY_DIGITS = 9
+# the pivot of a turn that makes twins lies over the head's centre within this [mm]
+TURN_PIVOT_TOLERANCE = 1e-12
 
 
 @dataclass(frozen=True)
@@ -92,6 +98,9 @@ class PreparedCase:
     stand_ins : tuple of int
         Per group, the group whose solve stands for it: its own index, or a twin's
         (exubrush.run.twins); empty: every group is solved.
+    stand_in_turns : tuple of float
+        Per group, the angle [rad] about the head's centre by which it lies turned from its
+        stand-in (0: shifted along the plane, or its own).
     """
 
     case: Case
@@ -108,6 +117,7 @@ class PreparedCase:
     reaching: tuple[bool, ...] = ()
     mesh: MeshSurface | None = None
     stand_ins: tuple[int, ...] = ()
+    stand_in_turns: tuple[float, ...] = ()
 
     @property
     def solved_groups(self) -> list[tuple[int, tuple[int, ...]]]:
@@ -174,6 +184,7 @@ def prepare(case: Case) -> PreparedCase:
             raise ParameterError(str(err)) from None
     reaching = surface_reach(case, bristles, motion, mesh)
     groups = bristle_groups(case, bristles)
+    sources, turns = stand_ins(case, bristles, groups, motion)
     if not any(reaching):
         s = case.surface
         raise ParameterError(
@@ -196,7 +207,8 @@ def prepare(case: Case) -> PreparedCase:
             unreachable_tufts(case, bristles, reaching)) + tuple(coupled_warning(case, groups)),
         reaching=reaching,
         mesh=mesh,
-        stand_ins=stand_ins(case, bristles, groups, motion),
+        stand_ins=sources,
+        stand_in_turns=turns,
     )
 
 
@@ -322,25 +334,65 @@ def bristle_groups(case: Case, bristles) -> tuple[tuple[int, ...], ...]:
     return tuple((i,) for i in range(count))
 
 
-def stand_ins(case, bristles, groups, motion) -> tuple[int, ...]:
-    """Per group of ``groups`` (tuples of indices into ``bristles``), the index of the group
-    whose solve stands for it: its own, or the first group whose bristle is its twin, alike
-    in all but where its root sits on the plane (exubrush.run.twins says when that is
-    exact)."""
-    own = tuple(range(len(groups)))
-    turns = motion.pose is not None and motion.pose.turns
-    if (not case.solver.share_identical or case.surface.kind != "plane" or turns
-            or case.solver.partition != "per-bristle" or case.contact.between_bristles):
+def stand_ins(case, bristles, groups, motion) -> tuple[tuple[int, ...], tuple[float, ...]]:
+    """Per group of ``groups`` (tuples of indices into ``bristles``): the index of the group
+    whose solve stands for it, its own or the first whose bristle is its twin, and the
+    angle [rad] about the head's centre by which the twin lies turned from it (0 for a
+    twin shifted along the plane). exubrush.run.twins says when each is exact."""
+    count = len(groups)
+    own = tuple(range(count)), (0.0,) * count
+    if (not case.solver.share_identical or case.surface.kind != "plane"
+            or case.solver.partition != "per-bristle" or case.contact.between_bristles
+            or any(len(group) != 1 for group in groups)):
         return own
-    first: dict[tuple, int] = {}
-    return tuple(first.setdefault(_twin_key(bristles[group[0]]), index) if len(group) == 1
-                 else index for index, group in enumerate(groups))
+    if motion.pose is None or not motion.pose.turns:
+        key = _shift_key
+    elif _turns_about_its_centre_only(case, motion.pose):
+        key = _turn_key
+    else:
+        return own
+    first: dict[tuple, tuple[int, float]] = {}
+    sources, turns = [], []
+    for index, group in enumerate(groups):
+        found, angle = key(bristles[group[0]])
+        source, source_angle = first.setdefault(found, (index, angle))
+        sources.append(source)
+        turns.append(angle - source_angle if source != index else 0.0)
+    return tuple(sources), tuple(turns)
 
 
-def _twin_key(bristle) -> tuple:
-    """Everything of a bristle that its motion relative to the plane depends on: all but
-    its root's position along the plane (exact floats: twins are built by the same
-    operations)."""
-    return (float(bristle.root[2]), bristle.frame.tobytes(), bristle.length,
-            bristle.tip_radius, bristle.section, bristle.width, bristle.height, bristle.shape,
-            bristle.material)
+def _shift_key(bristle) -> tuple[tuple, float]:
+    """Everything of a bristle that its motion relative to the plane depends on under a
+    head that does not turn: all but its root's position along the plane (exact floats:
+    twins are built by the same operations); no angle."""
+    return (float(bristle.root[2]), bristle.frame.tobytes(), *_shape_key(bristle)), 0.0
+
+
+def _turn_key(bristle) -> tuple[tuple, float]:
+    """The same under a head turning about its centre only: the bristle turned about the
+    centre onto the +x axis (its distance and frame there, to TURN_KEY_DIGITS), and the
+    polar angle [rad] of its root."""
+    x, y, z = bristle.root
+    radius = math.hypot(x, y)
+    angle = math.atan2(y, x) if radius > 0.0 else 0.0
+    back = np.array([[math.cos(angle), math.sin(angle), 0.0],
+                     [-math.sin(angle), math.cos(angle), 0.0], [0.0, 0.0, 1.0]])
+    frame = np.round(back @ bristle.frame, TURN_KEY_DIGITS) + 0.0  # + 0.0: no -0.0
+    return (round(radius, TURN_KEY_DIGITS), float(z), frame.tobytes(),
+            *_shape_key(bristle)), angle
+
+
+def _shape_key(bristle) -> tuple:
+    return (bristle.length, bristle.tip_radius, bristle.section, bristle.width,
+            bristle.height, bristle.shape, bristle.material)
+
+
+def _turns_about_its_centre_only(case, pose) -> bool:
+    """Whether the head's only motion along the plane is a turn about the vertical axis
+    through its centre: no slide, pose terms on z and rz alone, the pivot over the head's
+    centre; and no coordinates are kept (a turned twin's rotation coordinates are not its
+    stand-in's)."""
+    rates = pose.peak_rate
+    return (case.motion.profile == "none" and not case.output.solution_file
+            and not np.any(rates[[0, 1, 3, 4]] > 0.0)
+            and math.hypot(pose.pivot[0], pose.pivot[1]) <= TURN_PIVOT_TOLERANCE)

@@ -285,7 +285,8 @@ def _plain_scalars(solution: GroupSolution) -> bool:
         return False
     numbers += [n for row in inertia for n in row]
     return (isinstance(solution.completed, bool) and isinstance(solution.retried, bool)
-            and isinstance(solution.message, str) and all(isinstance(n, int | float) and not isinstance(n, bool) for n in numbers))
+            and isinstance(solution.message, str)
+            and all(isinstance(n, int | float) and not isinstance(n, bool) for n in numbers))
 
 
 def _temporaries(names: set[str]) -> set[str]:

@@ -23,6 +23,15 @@ Each condition is necessary:
 - no pose term turns the head (exubrush.world.pose.HeadPose.turns): a turn carries a shift
   along the plane out of it, or moves the twins' roots along different paths.
 
+A head that turns about the vertical axis through its centre, and moves along the plane
+in no other way (no slide, pose terms on z and rz alone, the pivot over the centre), makes
+twins of its bristles turned about that axis onto each other: alike, the same distance
+from the centre, their frames turned by the same angle (compared to nine decimals). The
+round `oscillating-rotating` head, whose roots tilt away from the centre
+(``head.tilt_pattern = "radial"``), has 69 systems to solve for its 703 filaments. A
+turned twin's rotation coordinates are not its stand-in's turned, so a run that keeps
+coordinates (``output.solution_file``) has no turned twins.
+
 Gravity is uniform, the contact law and friction depend only on the tip's height above the
 plane and its velocities, and the handle of each group is the same, so nothing else tells
 twins apart. A test solves twins both ways (tests/integration/test_twins.py).
@@ -39,26 +48,45 @@ from exubrush.run.solution import GroupSolution, SolverStatistics
 from exubrush.world.kinematics import handle_history
 
 
-def twin_solution(source: GroupSolution, shift: np.ndarray,
-                  acceleration: np.ndarray) -> GroupSolution:
-    """The record of a twin whose root lies ``shift`` [mm] from ``source``'s, along the plane.
+def twin_solution(source: GroupSolution, shift: np.ndarray, acceleration: np.ndarray,
+                  turn: float = 0.0) -> GroupSolution:
+    """The record of a twin whose root lies ``shift`` [mm] from ``source``'s along the plane,
+    or turned by ``turn`` [rad] about the head's centre (then ``shift`` is zero).
 
-    Forces, tip forces and coordinates (displacements from each body's reference position)
-    are the source's; tips and nodes move by ``shift``. The bristle's loads on the handle act
-    ``shift`` further along, so the head's moment about the handle's node gains shift × f,
-    f = −reaction − m a the twin's force on the surface (exubrush.world.kinematics.
-    head_force); as the head does not turn, its moment is −λ of the drive's rotation
-    coordinates (exubrush.world.kinematics.head_moment), so λ loses shift × f.
+    Shifted: forces, tip forces and coordinates (displacements from each body's reference
+    position) are the source's; tips and nodes move by ``shift``. The bristle's loads on
+    the handle act ``shift`` further along, so the head's moment about the handle's node
+    gains shift × f, f = −reaction − m a the twin's force on the surface
+    (exubrush.world.kinematics.head_force); as the head does not turn, its moment is −λ of
+    the drive's rotation coordinates (exubrush.world.kinematics.head_moment), so λ loses
+    shift × f.
+
+    Turned by R about the vertical axis through the handle's node: tips and nodes turn
+    about it; the twin's force on the surface is R f, so its reaction is R (reaction + m a)
+    − m a; the moment of the turned loads about a point on the axis is R times the
+    source's, and as the head turns about z alone (G = I, its own inertia's moment along z,
+    which R keeps), λ turns with it; tip forces in the head frame turn by R too (turns
+    about z commute). No coordinates are kept (exubrush.run.prepared.stand_ins).
+
     ``acceleration`` is the handle's (n, 3) [mm/s²] at the source's times (at least).
     Nothing was solved for the twin: its statistics and wall time are zero.
     """
     moment = source.drive_moment
-    if moment is not None:
-        force = -source.reaction - source.handle_mass * acceleration[:len(source.time)]
-        moment = moment - np.cross(shift, force)
-    return dataclasses.replace(source, tips=source.tips + shift, nodes=source.nodes + shift,
-                               drive_moment=moment, statistics=SolverStatistics(),
-                               wall_time=0.0)
+    inertia = source.handle_mass * acceleration[:len(source.time)]
+    if turn == 0.0:
+        if moment is not None:
+            moment = moment - np.cross(shift, -source.reaction - inertia)
+        return dataclasses.replace(source, tips=source.tips + shift,
+                                   nodes=source.nodes + shift, drive_moment=moment,
+                                   statistics=SolverStatistics(), wall_time=0.0)
+    c, s = np.cos(turn), np.sin(turn)
+    rotation = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+    return dataclasses.replace(
+        source, tips=source.tips @ rotation.T, nodes=source.nodes @ rotation.T,
+        reaction=(source.reaction + inertia) @ rotation.T - inertia,
+        drive_moment=None if moment is None else moment @ rotation.T,
+        tip_force=source.tip_force @ rotation.T, coordinates=None,
+        statistics=SolverStatistics(), wall_time=0.0)
 
 
 def with_twins(prepared, solutions: Sequence[GroupSolution | None]
@@ -77,7 +105,9 @@ def with_twins(prepared, solutions: Sequence[GroupSolution | None]
     for index in twins:
         source = solutions[sources[index]]
         if source is not None:
+            turn = prepared.stand_in_turns[index]
             root = prepared.bristles[prepared.groups[index][0]].root
-            shift = root - prepared.bristles[prepared.groups[sources[index]][0]].root
-            complete[index] = twin_solution(source, shift, acceleration)
+            shift = (np.zeros(3) if turn else
+                     root - prepared.bristles[prepared.groups[sources[index]][0]].root)
+            complete[index] = twin_solution(source, shift, acceleration, turn)
     return complete
