@@ -625,9 +625,9 @@ class Solver(Parameters):
         "text", choices=("auto", "EigenDense", "EXUdense", "EigenSparse"),
     )
     steps_per_cycle: int = param(
-        20, "while a [[motion.sine]] term acts, the step is at most its cycle over this: 20 "
-            "resolve the drive, not a filament driven near its resonance (about 100 a period "
-            "of the filament's first mode at spectral_radius 0; docs/motion.md)", minimum=4,
+        160, "while a [[motion.sine]] term acts, the step is at most its cycle over this: "
+             "20 resolve the drive, 160 what a stuck tip and the head's moment do under a "
+             "turn (docs/motion.md, 'How many steps a cycle')", minimum=4,
     )
     step_recovery_steps: int = param(
         4, "successful steps after a step reduction before the step may grow again (Exudyn's "

@@ -17,7 +17,8 @@ Resolution: the largest step must resolve the motion, or the solver steps over i
 20 s step on a 12 s slide period ran to the end with a peak force 9.4x the right one):
 at least 100 steps per slide period (or over a slide CSV's duration), 20 per approach, 4
 per hold and 100 over a pose CSV's duration; while a sine pose term acts the step is capped
-at a twentieth of its cycle (exubrush.run.step_policy), which the steps' estimate counts,
+at its cycle over solver.steps_per_cycle (exubrush.run.step_policy), which the steps'
+estimate counts,
 and a term that would need a step below solver.minimum_step_size is refused. A slide
 CSV's sample spacing is no bound: a finely sampled smooth profile needs no step that small,
 and where a profile moves faster than the step resolves (a jump, a sharp corner), a warning

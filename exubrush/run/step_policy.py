@@ -4,8 +4,9 @@ In steady sliding Newton converges in one or two iterations, so the step may gro
 ``solver.step_size`` to the larger sliding step there; near reversals, in the friction
 law's Stribeck band and where tips can snap off edges it stays ``step_size``
 (docs/model.md, "Steps in the middle of a stroke"). While a sine pose term acts the step
-is no larger than a twentieth of its cycle (docs/motion.md). :func:`motion_step_cap` makes
-the step hook that sets Exudyn's cap (exubrush.run.solver.step_cap) accordingly.
+is no larger than its cycle over ``solver.steps_per_cycle`` (docs/motion.md).
+:func:`motion_step_cap` makes the step hook that sets Exudyn's cap
+(exubrush.run.solver.step_cap) accordingly.
 """
 
 from __future__ import annotations

@@ -116,14 +116,16 @@ def test_a_vibration_is_stepped_finely_while_it_acts_and_counted_in_the_budget(t
                                           'frequency = "260 Hz"\nduration = "0.5 s"\n'))
     prepared = prepare(case)  # the 2 ms step stays: the vibration caps it while it acts
     plain = math.ceil(prepared.motion.end_time / case.solver.step_size)
-    fine = 1 / (260 * 20)
-    # from 6 steps of 2 ms before the term to its end, 20 steps a cycle instead of 2 ms ones
+    per_cycle = case.solver.steps_per_cycle
+    fine = 1 / (260 * per_cycle)
+    # from 6 steps of 2 ms before the term to its end, per_cycle steps a cycle instead of
+    # 2 ms ones
     assert prepared.work.steps - plain == math.ceil((0.5 + 0.012) / fine) - math.floor(
         (0.5 + 0.012) / 2e-3)
     with pytest.raises(ParameterError) as caught:
         prepare(case.replace(solver=case.solver.replace(minimum_step_size=1e-3)))
-    assert ("motion.sine[0] (260 Hz) needs steps of at most 0.1923 ms (20 per cycle), below "
-            "solver.minimum_step_size 1 ms") in str(caught.value)
+    assert (f"motion.sine[0] (260 Hz) needs steps of at most {fine * 1e3:.4g} ms ({per_cycle} "
+            "per cycle), below solver.minimum_step_size 1 ms") in str(caught.value)
 
 
 def test_a_pose_csv_is_read_relative_to_the_case_file_and_checked(tmp_path):

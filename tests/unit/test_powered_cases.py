@@ -31,9 +31,11 @@ def test_the_round_head_fits_its_disc_and_turns_about_its_centre():
     # oscillations a minute; a built-in case is read through its TOML text (12 digits)
     assert turn.frequency * 60 == pytest.approx(7600.0, rel=1e-11)
     assert math.degrees(turn.angle) == pytest.approx(20.0, rel=1e-11)
-    # the steps while it turns: 20 a cycle (exubrush.run.step_policy), counted in the budget
+    # the steps while it turns: steps_per_cycle a cycle (exubrush.run.step_policy), counted
+    # in the budget
     turning = prepared.motion.end_time - prepared.motion.slide_start
-    assert prepared.work.steps >= turning * 20 * turn.frequency
+    per_cycle = prepared.case.solver.steps_per_cycle
+    assert prepared.work.steps >= turning * per_cycle * turn.frequency
 
 
 def test_the_sonic_head_swings_across_the_handle_on_a_slow_stroke_along_it():
@@ -56,9 +58,10 @@ def test_the_sonic_head_swings_across_the_handle_on_a_slow_stroke_along_it():
     assert np.abs(swings).max(axis=0) == pytest.approx([0, 2 * math.pi * 258 * 1.5, 0, 0, 0, 0],
                                                      rel=1e-3, abs=1e-9)
     # the output resolves the swing (vibration.py needs 4 samples a cycle) and the steps
-    # are 20 a cycle while it acts, counted in the budget
+    # are steps_per_cycle a cycle while it acts, counted in the budget
     assert 1.0 / (swing.frequency * prepared.case.output.interval) >= 15
-    assert prepared.work.steps >= (end - start) * 20 * swing.frequency
+    per_cycle = prepared.case.solver.steps_per_cycle
+    assert prepared.work.steps >= (end - start) * per_cycle * swing.frequency
     # only the tips are kept at every sample: well within the default memory limit
     assert prepared.work.memory < prepared.case.limits.memory / 4
 
