@@ -9,6 +9,8 @@ filament is near a snap they part, by the solver's tolerance amplified (docs/dec
 of a tuft solved apart part by 0.05 mm, and so do they from the twins solved once.
 """
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -19,45 +21,25 @@ from exubrush.run.twins import twin_solution
 from exubrush.simulation import simulate
 from exubrush.world.kinematics import handle_history
 
-CASE = """name = "twins"
-[head]
-layout = "tufts"
-[[head.tufts]]
-x = "-1.5 mm"
-filaments = 7
-diameter = "0.7 mm"
-[[head.tufts]]
-x = "1.5 mm"
-y = "0.4 mm"
-filaments = 7
-diameter = "0.7 mm"
-[motion]
-direction = "parallel"
-interaction_distance = "10.45 mm"
-approach_duration = "0.5 s"
-hold_duration = "0.02 s"
-amplitude = "15 mm"
-period = "4 s"
-periods = 0.005
-[[motion.sine]]
-axis = "y"
-amplitude = "1.5 mm"
-frequency = "258 Hz"
-ramp_cycles = 2
-[output]
-interval = "0.25 ms"
-shape_interval = "2 ms"
-solution_file = true
-"""
+# two tufts of seven filaments on the sonic case's motion
+TUFTS = Path(__file__).parents[2] / "validation" / "benchmarks" / "twin_tufts.toml"
+PRESSED_LIGHTLY = ["motion.interaction_distance='10.45 mm'", "motion.approach_duration='0.5 s'",
+                   "motion.hold_duration='0.02 s'", "motion.periods=0.005",
+                   "output.solution_file=true"]
 
 
-@pytest.mark.slow  # about 15 s: 16 one-filament solves, 0.02 s of them at 0.19 ms steps
-def test_twins_solved_once_give_what_solving_each_gives(tmp_path):
-    path = tmp_path / "twins.toml"
-    path.write_text(CASE)
-    once, each = (simulate(load_case(str(path), [f"solver.share_identical={share}"]),
+def solved_both_ways(path, overrides=()):
+    """The case at ``path`` solved with twins solved once and with every bristle solved."""
+    once, each = (simulate(load_case(str(path), [*overrides,
+                                                  f"solver.share_identical={share}"]),
                            progress=False, workers=2) for share in ("true", "false"))
     assert once.metadata["status"] == each.metadata["status"] == "completed"
+    return once, each
+
+
+@pytest.mark.slow  # about 30 s: 16 one-filament solves, 0.02 s of them at 24 µs steps
+def test_twins_solved_once_give_what_solving_each_gives():
+    once, each = solved_both_ways(TUFTS, PRESSED_LIGHTLY)
     assert once.metadata["derived"]["systems_solved"] == 2  # one per tuft: its own tilt
     assert once.metadata["derived"]["twins_not_solved"] == 12
     assert each.metadata["derived"]["systems_solved"] == 14
@@ -82,11 +64,9 @@ def test_twins_solved_once_give_what_solving_each_gives(tmp_path):
     np.testing.assert_allclose(once.shape_coordinates, each.shape_coordinates, atol=1e-5)
 
 
-@pytest.mark.slow  # about 3 s: two one-filament solves
-def test_a_twin_made_from_its_stand_in_is_the_twin_solved(tmp_path):
-    path = tmp_path / "twins.toml"
-    path.write_text(CASE)
-    prepared = prepare(load_case(str(path)))
+@pytest.mark.slow  # about 5 s: two one-filament solves
+def test_a_twin_made_from_its_stand_in_is_the_twin_solved():
+    prepared = prepare(load_case(str(TUFTS), PRESSED_LIGHTLY))
     twin = len(prepared.groups) - 1  # an outer filament of the second tuft
     source = prepared.stand_ins[twin]
     assert source != twin
@@ -144,15 +124,13 @@ shape_interval = "2 ms"
 """
 
 
-@pytest.mark.slow  # about 15 s: 21 + 4 one-filament solves, 0.02 s of turning each
+@pytest.mark.slow  # about 20 s: 21 + 4 one-filament solves, 0.02 s of turning each
 def test_twins_turned_about_the_centre_give_what_solving_each_gives(tmp_path):
     # three tufts 120° apart on a ring, their roots tilted away from the centre: filaments
     # as far from the centre are twins under the head's turn
     path = tmp_path / "turning.toml"
     path.write_text(TURNING)
-    once, each = (simulate(load_case(str(path), [f"solver.share_identical={share}"]),
-                           progress=False, workers=2) for share in ("true", "false"))
-    assert once.metadata["status"] == each.metadata["status"] == "completed"
+    once, each = solved_both_ways(path)
     solved = once.metadata["derived"]["systems_solved"]
     assert solved < 21 / 2 and each.metadata["derived"]["systems_solved"] == 21
     # to Newton's tolerances, amplified where the tips stick and slip in the turn (1e-4 mm

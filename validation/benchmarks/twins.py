@@ -13,7 +13,6 @@ for the run solved apart, how far each tuft's filaments part from the tuft's fir
 from __future__ import annotations
 
 import argparse
-import tempfile
 import time
 from pathlib import Path
 
@@ -22,31 +21,7 @@ import numpy as np
 from exubrush.parameters.io import load_case
 from exubrush.simulation import simulate
 
-CASE = """name = "twins"
-[head]
-layout = "tufts"
-[[head.tufts]]
-x = "-1.5 mm"
-filaments = 7
-diameter = "0.7 mm"
-[[head.tufts]]
-x = "1.5 mm"
-y = "0.4 mm"
-filaments = 7
-diameter = "0.7 mm"
-[motion]
-direction = "parallel"
-amplitude = "15 mm"
-period = "4 s"
-[[motion.sine]]
-axis = "y"
-amplitude = "1.5 mm"
-frequency = "258 Hz"
-[output]
-interval = "0.25 ms"
-shape_interval = "2 ms"
-solution_file = true
-"""
+TUFTS = Path(__file__).parent / "twin_tufts.toml"  # also the twins' test case
 
 
 def share_of_peak(a: np.ndarray, b: np.ndarray) -> float:
@@ -69,20 +44,17 @@ def main() -> None:
     parser.add_argument("--periods", type=float, default=0.005,
                         help="motion.periods of the 4 s stroke (0.005: 0.02 s of swing)")
     args = parser.parse_args()
-    with tempfile.TemporaryDirectory() as folder:
-        path = Path(folder) / "twins.toml"
-        path.write_text(CASE)
-        runs = {}
-        for share in ("true", "false"):
-            start = time.perf_counter()
-            runs[share] = simulate(load_case(str(path), [
-                f"solver.share_identical={share}",
-                f"motion.interaction_distance='{args.distance} mm'",
-                f"motion.periods={args.periods}"]), progress=False)
-            derived = runs[share].metadata["derived"]
-            print(f"share_identical={share}: {derived['systems_solved']} systems, "
-                  f"{time.perf_counter() - start:.1f} s wall, "
-                  f"status {runs[share].metadata['status']}")
+    runs = {}
+    for share in ("true", "false"):
+        start = time.perf_counter()
+        runs[share] = simulate(load_case(str(TUFTS), [
+            f"solver.share_identical={share}",
+            f"motion.interaction_distance='{args.distance} mm'",
+            f"motion.periods={args.periods}"]), progress=False)
+        derived = runs[share].metadata["derived"]
+        print(f"share_identical={share}: {derived['systems_solved']} systems, "
+              f"{time.perf_counter() - start:.1f} s wall, "
+              f"status {runs[share].metadata['status']}")
     once, each = runs["true"], runs["false"]
     print(f"normal force: {share_of_peak(once.normal_force, each.normal_force):.3g} of its peak;"
           f" mean {once.normal_force.mean():.6g} N against {each.normal_force.mean():.6g} N")
