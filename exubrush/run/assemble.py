@@ -65,7 +65,7 @@ def assemble_results(prepared: PreparedCase, solutions: Sequence[GroupSolution |
     ``status`` is "failed" or "interrupted" with the reason in ``message``.
     """
     case = prepared.case
-    solved = [s for s, (i, _) in zip(solutions, enumerate(prepared.groups), strict=True)
+    solved = [s for i, s in enumerate(solutions)
               if s is not None and (not prepared.stand_ins or prepared.stand_ins[i] == i)]
     solutions = with_twins(prepared, solutions)
     ran = [s for s in solutions if s is not None]
