@@ -65,13 +65,17 @@ def assemble_results(prepared: PreparedCase, solutions: Sequence[GroupSolution |
     ``status`` is "failed" or "interrupted" with the reason in ``message``.
     """
     case = prepared.case
-    solved = [s for i, s in enumerate(solutions)
-              if s is not None and (not prepared.stand_ins or prepared.stand_ins[i] == i)]
-    solutions = with_twins(prepared, solutions)
+    solved = [solutions[i] for i, _ in prepared.solved_groups if solutions[i] is not None]
+    # the handle's motion on the longest output grid, once: the twins need it on their
+    # stand-ins' grids, the head force on the grid all groups reached (every grid is the
+    # multiples of output.interval from 0, so each is a start of the longest)
+    longest = max((s.time for s in solutions if s is not None), key=len, default=np.zeros(0))
+    history = handle_history(prepared.motion, prepared.slide_axis, longest)
+    solutions = with_twins(prepared, solutions, history[2])
     ran = [s for s in solutions if s is not None]
     n = min(len(s.time) for s in ran) if len(ran) == len(solutions) else 0
     t = ran[0].time[:n] if ran else np.zeros(0)
-    position, _, acceleration = handle_history(prepared.motion, prepared.slide_axis, t)
+    position, acceleration = history[0][:n], history[2][:n]
     force = head_force([s.reaction[:n] for s in ran] if n else [],
                        [s.handle_mass for s in ran], acceleration)
     handle_position = position + np.array([0.0, 0.0, prepared.start_height])

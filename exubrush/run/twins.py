@@ -45,7 +45,6 @@ from collections.abc import Sequence
 import numpy as np
 
 from exubrush.run.solution import GroupSolution, SolverStatistics
-from exubrush.world.kinematics import handle_history
 
 
 def twin_solution(source: GroupSolution, shift: np.ndarray, acceleration: np.ndarray,
@@ -89,25 +88,19 @@ def twin_solution(source: GroupSolution, shift: np.ndarray, acceleration: np.nda
         statistics=SolverStatistics(), wall_time=0.0)
 
 
-def with_twins(prepared, solutions: Sequence[GroupSolution | None]
-               ) -> list[GroupSolution | None]:
+def with_twins(prepared, solutions: Sequence[GroupSolution | None],
+               acceleration: np.ndarray) -> list[GroupSolution | None]:
     """``solutions`` (one per group, None where not solved) with each twin's record made
-    from its stand-in's (None while the stand-in has none)."""
+    from its stand-in's (None while the stand-in has none); ``acceleration`` is the
+    handle's (n, 3) [mm/s²] on the longest of their time grids."""
     sources = prepared.stand_ins
     complete = list(solutions)
-    twins = [i for i, source in enumerate(sources) if source != i]
-    if not twins:
-        return complete
-    longest = max((len(s.time) for s in solutions if s is not None), default=0)
-    times = next((s.time for s in solutions if s is not None and len(s.time) == longest),
-                 np.zeros(0))
-    _, _, acceleration = handle_history(prepared.motion, prepared.slide_axis, times)
-    for index in twins:
-        source = solutions[sources[index]]
-        if source is not None:
+    for index, stand_in in enumerate(sources):
+        source = solutions[stand_in]
+        if stand_in != index and source is not None:
             turn = prepared.stand_in_turns[index]
             root = prepared.bristles[prepared.groups[index][0]].root
             shift = (np.zeros(3) if turn else
-                     root - prepared.bristles[prepared.groups[sources[index]][0]].root)
+                     root - prepared.bristles[prepared.groups[stand_in][0]].root)
             complete[index] = twin_solution(source, shift, acceleration, turn)
     return complete
