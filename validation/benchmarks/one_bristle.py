@@ -1,6 +1,7 @@
-"""One bristle of a case's head, built as exubrush builds it for a run: the command-line
-options and the system that the single-bristle scripts (profile_bristle.py,
-step_attempts.py) share. Import it after choosing Exudyn's core (it imports exubrush)."""
+"""One bristle of a case's head, or the group of touching bristles that holds it, built as
+exubrush builds it for a run: the command-line options and the system that the scripts on
+one system (profile_bristle.py, step_attempts.py, split_rates.py) share. Import it after
+choosing Exudyn's core (it imports exubrush)."""
 
 from __future__ import annotations
 
@@ -23,10 +24,12 @@ def add_arguments(parser: argparse.ArgumentParser, case: str, bristle: int) -> N
                         metavar="KEY=VALUE")
 
 
-def build(parser: argparse.ArgumentParser, args: argparse.Namespace):
+def build(parser: argparse.ArgumentParser, args: argparse.Namespace, group: bool = False):
     """(the prepared case, the bristle's scene, its Exudyn settings) for the parsed
-    options; the scene's pre-step function is not set yet. A bad case, override or
-    bristle index ends the script with the parser's one-line error (exit code 2)."""
+    options; with ``group``, the scene of the whole group the bristle is solved in (the
+    bristles that can touch it, with contact.between_bristles). The scene's pre-step
+    function is not set yet. A bad case, override or bristle index ends the script with
+    the parser's one-line error (exit code 2)."""
     try:
         case = load_case(args.case, [f"model.kind='{args.model}'",
                                      f"motion.periods={args.periods:g}", *args.overrides])
@@ -36,5 +39,8 @@ def build(parser: argparse.ArgumentParser, args: argparse.Namespace):
     count = len(prepared.bristles)
     if not 0 <= args.bristle < count:
         parser.error(f"--bristle {args.bristle}: the head has bristles 0 to {count - 1}")
-    scene = build_scene(prepared, (args.bristle,))
-    return prepared, scene, group_settings(prepared, scene, (args.bristle,))
+    selection = (args.bristle,)
+    if group:
+        selection = next(g for g in prepared.groups if args.bristle in g)
+    scene = build_scene(prepared, selection)
+    return prepared, scene, group_settings(prepared, scene, selection)

@@ -1,7 +1,8 @@
 """Step attempts of one bristle's solve: how many failed, and what they cost.
 
     python validation/benchmarks/step_attempts.py [--case interdental] [--model dfm|prb]
-        [--periods 1] [--bristle 23] [--bins 0.5] [--watch T0 T1] [--set KEY=VALUE ...]
+        [--periods 1] [--bristle 23] [--group] [--bins 0.5] [--watch T0 T1]
+        [--set KEY=VALUE ...]
 
 Builds one bristle of the case's head as exubrush does and solves it in this process
 (Exudyn's fast core), reading the solver's counters before every step attempt: Exudyn
@@ -9,7 +10,9 @@ calls the pre-step function before each attempt, a retry after a failed Newton s
 included, and a retry starts where the failed attempt started. Prints the attempts, the
 failed ones, and the Newton iterations and Jacobians spent in failed and in accepted
 attempts; with ``--bins`` the same per interval of simulated time [s] (where in the
-stroke the Jacobians go, by the attempts' start times). With ``--watch T0 T1`` it also
+stroke the Jacobians go, by the attempts' start times). ``--group`` solves the whole group
+the bristle is solved in (with contact.between_bristles, the bristles that can touch it):
+where a touching group's steps go (docs/decisions/0023). With ``--watch T0 T1`` it also
 prints, for every Newton iteration of the attempts that end between T0 and T1 [s], the
 residual of the iteration before and the tip's penetration [mm], normal speed [mm/s] and
 slip [mm/s] on each surface feature it touches (analytic surfaces, the paper's law).
@@ -30,6 +33,7 @@ from exubrush.run.solve import solver_statistics
 from exubrush.world.surfaces import features, taken
 
 MAX_BINS = 10_000  # rows of the --bins table
+STEP_DECADES = 10.0 ** np.arange(-10, 1)  # [s]: the accepted steps' lengths, by decade
 
 
 def record_attempts(scene) -> list:
@@ -113,6 +117,8 @@ def main() -> None:
                         help="also tabulate per interval of simulated time [s]")
     parser.add_argument("--watch", type=float, nargs=2, metavar=("T0", "T1"),
                         help="print each Newton iterate's tip contact between these times [s]")
+    parser.add_argument("--group", action="store_true",
+                        help="solve the bristle's whole group (bristles that can touch it)")
     args = parser.parse_args()
     if not (args.bins == 0.0 or 0.0 < args.bins < math.inf):
         parser.error(f"--bins {args.bins:g}: give an interval > 0 s, or 0 for none")
@@ -120,7 +126,9 @@ def main() -> None:
                            and args.watch[0] <= args.watch[1]):
         parser.error(f"--watch {args.watch[0]:g} {args.watch[1]:g}: give two times [s], "
                      "T0 not after T1")
-    prepared, scene, settings = build(parser, args)
+    if args.watch and args.group:
+        parser.error("--watch shows one bristle's tip: leave out --group")
+    prepared, scene, settings = build(parser, args, group=args.group)
     end = prepared.motion.end_time
     if args.bins and end / args.bins > MAX_BINS:
         parser.error(f"--bins {args.bins:g}: {end / args.bins:.3g} intervals over the run's "
@@ -139,7 +147,7 @@ def main() -> None:
         print(f"the solve stopped: {error}")
         finished = False
     wall = time.perf_counter() - clock
-    statistics = solver_statistics(scene.mbs)
+    statistics = solver_statistics(scene.mbs, scene.line_search)
     starts, failed, jacobians, iterations = attempt_costs(
         rows, statistics.jacobian_updates, statistics.newton_iterations, finished)
     print(f"wall {wall:.3f} s, {statistics} (Exudyn's steps: accepted attempts + 1)")
@@ -147,13 +155,19 @@ def main() -> None:
     for label, mask in (("failed", failed), ("accepted", ~failed)):
         print(f"  {label:8s}: Jacobians {int(jacobians[mask].sum()):6d}, "
               f"Newton iterations {int(iterations[mask].sum()):7d}")
+    lengths = np.array([end for end, *_ in rows]) - starts
+    counts = np.histogram(lengths[~failed], STEP_DECADES)[0]
+    print("accepted steps by length: " + ", ".join(
+        f"{low:.0e}-{high:.0e} s: {n}" for low, high, n in
+        zip(STEP_DECADES[:-1], STEP_DECADES[1:], counts, strict=True) if n))
     if args.bins > 0.0:
-        print(f"{'from [s]':>9s} {'attempts':>9s} {'failed':>7s} {'Jacobians':>10s}")
+        print(f"{'from [s]':>9s} {'attempts':>9s} {'failed':>7s} {'Jacobians':>10s} "
+              f"{'Newton':>8s}")
         which = np.floor(starts / args.bins).astype(int)
         for b in range(which.max() + 1):
             mask = which == b
             print(f"{b * args.bins:9.2f} {int(mask.sum()):9d} {int(failed[mask].sum()):7d} "
-                  f"{int(jacobians[mask].sum()):10d}")
+                  f"{int(jacobians[mask].sum()):10d} {int(iterations[mask].sum()):8d}")
 
 
 if __name__ == "__main__":
