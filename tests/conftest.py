@@ -1,6 +1,8 @@
 """Shared test helpers."""
 
+import importlib.util
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -27,3 +29,21 @@ def _sine_run(t0=1.2, t_end=25.2, dt=0.01, scale=1.0):
 def sine_run():
     """Factory of a synthetic sine slide with flat forces and a bump at each reversal."""
     return _sine_run
+
+
+BENCHMARKS = Path(__file__).parents[1] / "validation" / "benchmarks"
+
+
+@pytest.fixture
+def benchmark_script(monkeypatch):
+    """Loader of a script of validation/benchmarks by name (e.g. "split_rates"), with its
+    folder on the import path for its sibling modules (benchmark.py, one_bristle.py)."""
+
+    def load(name):
+        monkeypatch.syspath_prepend(str(BENCHMARKS))
+        spec = importlib.util.spec_from_file_location(name, BENCHMARKS / f"{name}.py")
+        module = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(module)
+        return module
+
+    return load

@@ -1,36 +1,28 @@
 """validation/benchmarks/contact_cost.py: the tufts it writes are the ones it names, and
 each row's figure is the ratio its target is about."""
 
-import importlib.util
-from pathlib import Path
-
 import pytest
 
 from exubrush.parameters.io import load_case
 
-SCRIPT = Path(__file__).parents[2] / "validation" / "benchmarks" / "contact_cost.py"
 TUFTS = {7: "0.8 mm", 19: "1.2 mm", 37: "1.6 mm", 61: "2.0 mm"}  # hexagonal packings
 
 
-def _rows(monkeypatch, folder):
-    monkeypatch.syspath_prepend(str(SCRIPT.parent))  # its sibling benchmark.py
-    spec = importlib.util.spec_from_file_location("contact_cost", SCRIPT)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module.rows(folder)
+def _rows(benchmark_script, folder):
+    return benchmark_script("contact_cost").rows(folder)
 
 
 @pytest.mark.parametrize("filaments", sorted(TUFTS))
-def test_each_tuft_file_holds_its_filaments_in_their_hole(monkeypatch, tmp_path, filaments):
-    case_file, overrides = _rows(monkeypatch, tmp_path)["filaments"]["runs"][str(filaments)]
+def test_each_tuft_file_holds_its_filaments_in_their_hole(benchmark_script, tmp_path, filaments):
+    case_file, overrides = _rows(benchmark_script, tmp_path)["filaments"]["runs"][str(filaments)]
     case = load_case(case_file, overrides)
     assert case.head.tufts[0].filaments == filaments
     assert case.head.tufts[0].diameter == pytest.approx(float(TUFTS[filaments].split()[0]))
     assert case.contact.between_bristles
 
 
-def test_figures_are_the_ratios_the_targets_are_about(monkeypatch, tmp_path):
-    every = _rows(monkeypatch, tmp_path)
+def test_figures_are_the_ratios_the_targets_are_about(benchmark_script, tmp_path):
+    every = _rows(benchmark_script, tmp_path)
     assert every["tuft window"]["figure"]({"contact": 30.0, "free": 10.0}) == 3.0
     assert every["tooth row"]["figure"]({"interdental": 9.0, "plane": 6.0}) == 1.5
     # seconds per filament: 7 filaments in 14 s and 61 in 183 s are 2 and 3 s each

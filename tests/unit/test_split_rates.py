@@ -2,23 +2,15 @@
 Gauss-Seidel's spectral radii, against the iteration matrices worked by hand and against
 the sweeps themselves."""
 
-import importlib.util
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
 
-SCRIPT = Path(__file__).parents[2] / "validation" / "benchmarks" / "split_rates.py"
-
 
 @pytest.fixture
-def script(monkeypatch):
-    monkeypatch.syspath_prepend(str(SCRIPT.parent))  # its sibling one_bristle.py
-    spec = importlib.util.spec_from_file_location("split_rates", SCRIPT)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+def script(benchmark_script):
+    return benchmark_script("split_rates")
 
 
 def test_two_scalar_blocks_have_the_textbook_radii(script):

@@ -1,21 +1,7 @@
 """The step-attempt counter of validation/benchmarks/step_attempts.py: which attempts
 failed and what each cost, from the solver's counters read before every attempt."""
 
-import importlib.util
-from pathlib import Path
-
 import numpy as np
-
-SCRIPT = Path(__file__).parents[2] / "validation" / "benchmarks" / "step_attempts.py"
-
-
-def _script(monkeypatch):
-    monkeypatch.syspath_prepend(str(SCRIPT.parent))  # its sibling one_bristle.py
-    spec = importlib.util.spec_from_file_location("step_attempts", SCRIPT)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
 
 # (end time, start time, Jacobians so far, Newton iterations so far) before each attempt:
 # 0 -> 0.1 s; 0.1 -> 0.2 s failed, so did its retry 0.1 -> 0.15 s; 0.1 -> 0.125 s; then
@@ -25,14 +11,15 @@ ROWS = [(0.1, 0.0, 0, 0), (0.2, 0.1, 2, 3), (0.15, 0.1, 10, 15), (0.125, 0.1, 19
 
 
 def test_retries_mark_the_attempts_before_them_failed_and_each_pays_its_own_counts(
-        monkeypatch):
-    starts, failed, jacobians, iterations = _script(monkeypatch).attempt_costs(ROWS, 21, 31)
+        benchmark_script):
+    attempt_costs = benchmark_script("step_attempts").attempt_costs
+    starts, failed, jacobians, iterations = attempt_costs(ROWS, 21, 31)
     np.testing.assert_array_equal(starts, [0.0, 0.1, 0.1, 0.1, 0.125])
     np.testing.assert_array_equal(failed, [False, True, True, False, False])
     np.testing.assert_array_equal(jacobians, [2, 8, 9, 1, 1])
     np.testing.assert_array_equal(iterations, [3, 12, 12, 2, 2])
 
 
-def test_the_last_attempt_of_a_solve_that_stopped_failed(monkeypatch):
-    _, failed, _, _ = _script(monkeypatch).attempt_costs(ROWS, 21, 31, finished=False)
+def test_the_last_attempt_of_a_solve_that_stopped_failed(benchmark_script):
+    _, failed, _, _ = benchmark_script("step_attempts").attempt_costs(ROWS, 21, 31, finished=False)
     np.testing.assert_array_equal(failed, [False, True, True, False, True])
