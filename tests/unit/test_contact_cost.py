@@ -28,3 +28,32 @@ def test_figures_are_the_ratios_the_targets_are_about(benchmark_script, tmp_path
     # seconds per filament: 7 filaments in 14 s and 61 in 183 s are 2 and 3 s each
     walls = {"7": 14.0, "19": 38.0, "37": 74.0, "61": 183.0}
     assert every["filaments"]["figure"](walls) == pytest.approx(1.5)
+
+
+def test_seeds_run_each_run_once_per_seed_and_figures_use_the_sums(benchmark_script):
+    script = benchmark_script("contact_cost")
+    calls = []
+
+    class Results:
+        metadata = {"completed": True, "solver_statistics": {"steps": 1, "jacobian_updates": 1},
+                    "derived": {}}
+
+    def fake_run(tree, what, case, overrides, out):
+        calls.append((case, overrides))
+        wall = {"head.seed=1": 10.0, "head.seed=2": 30.0}.get(overrides[-1], 1.0)
+        return Results(), {"wall": wall * (2.0 if "free" in case else 1.0)}
+
+    script.run_in_tree = fake_run
+    row = {"runs": {"contact": ("tuft", ["motion.periods=0.1"]),
+                    "free": ("tuft-free", ["motion.periods=0.1"])}}
+    records = script.measure(row, {"this": None}, 1, seeds=[1, 2])
+    assert calls == [("tuft", ["motion.periods=0.1", "head.seed=1"]),
+                     ("tuft", ["motion.periods=0.1", "head.seed=2"]),
+                     ("tuft-free", ["motion.periods=0.1", "head.seed=1"]),
+                     ("tuft-free", ["motion.periods=0.1", "head.seed=2"])]
+    assert [r["seed"] for r in records] == [1, 2, 1, 2]
+    assert script.summed_walls(records, "this") == {"contact": 40.0, "free": 80.0}
+    # without seeds, the case's own seed: no override added
+    calls.clear()
+    script.measure(row, {"this": None}, 1)
+    assert calls[0] == ("tuft", ["motion.periods=0.1"])

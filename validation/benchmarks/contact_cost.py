@@ -1,7 +1,7 @@
 """What contact between filaments, a tooth row and a powered head cost, against targets.
 
     python validation/benchmarks/contact_cost.py [--only ROW ...] [--repeat 1]
-        [--code LABEL=SOURCE_TREE ...] [--out validation/results/benchmarks]
+        [--seeds N ...] [--code LABEL=SOURCE_TREE ...] [--out validation/results/benchmarks]
 
 Each row is a pair (or set) of runs whose wall times are compared with a target:
 
@@ -27,6 +27,12 @@ Each row is a pair (or set) of runs whose wall times are compared with a target:
   brushing, filaments passing through each other (target: under 600 s, as above);
   ``sonic window``: the same with 0.05 s of brushing (no target: the row a session can
   afford, its time per filament and step counts).
+
+``--seeds 1 2 3`` runs every run once per root-tilt seed (``head.seed``) and makes each
+row's figure from the runs' wall times summed over the seeds: touching filaments settle
+into one of several arrangements, which one depends on the seed and on Newton's path, and
+one arrangement's window cost 3.5x another's on a 19-filament tuft (docs/decisions/0023),
+so a figure from one seed compares arrangements as much as code.
 
 Every run is a fresh process (benchmark.run_in_tree) that times ``simulate`` alone.
 ``--code old=/path/to/old/checkout new=.`` runs each row with each source tree in turn
@@ -115,36 +121,57 @@ def rows(folder: Path) -> dict[str, dict]:
     }
 
 
-def measure(row: dict, code: dict[str, Path], repeat: int) -> list[dict]:
+def measure(row: dict, code: dict[str, Path], repeat: int,
+            seeds: list[int] | None = None) -> list[dict]:
     """Run every run of ``row`` with every tree of ``code`` ``repeat`` times, trees in
-    turn; one record per run and tree (median wall time, counts, errors against the first
-    tree's forces)."""
+    turn, once per seed of ``seeds`` (``head.seed``; None: the case's own); one record per
+    run, seed and tree (median wall time, counts, errors against the first tree's
+    forces)."""
     records = []
-    for label, (case, overrides) in row["runs"].items():
-        walls = {tree: [] for tree in code}
-        first = {}
-        for _ in range(repeat):
-            for tree_label, tree in code.items():
-                results, report = run_in_tree(tree, "simulate", case, overrides, None)
-                walls[tree_label].append(report["wall"])
-                first.setdefault(tree_label, results)
-        reference = first[next(iter(code))]
-        for tree_label in code:
-            results = first[tree_label]
-            meta = results.metadata
-            record = {"run": label, "code": tree_label,
-                      "wall_time_s": statistics.median(walls[tree_label]),
-                      "completed": meta["completed"],
-                      **meta["solver_statistics"],
-                      "deepest_overlap_um": 1e3 * meta["derived"].get("bristle_overlap_max_mm",
-                                                                      0.0)}
-            if results is not reference:
-                record.update({f"vs_{next(iter(code))}_{key}": value for key, value
-                               in errors(results, reference).items()})
-            records.append(record)
-            print(f"  {label} [{tree_label}]: {record['wall_time_s']:.1f} s, "
-                  f"{record['steps']} steps, {record['jacobian_updates']} Jacobians", flush=True)
+    for label, (case, base) in row["runs"].items():
+        for seed in seeds or [None]:
+            overrides = base if seed is None else [*base, f"head.seed={seed}"]
+            records += _measure_run(label, seed, case, overrides, code, repeat)
     return records
+
+
+def _measure_run(label: str, seed: int | None, case: str, overrides: list[str],
+                 code: dict[str, Path], repeat: int) -> list[dict]:
+    walls: dict[str, list[float]] = {tree: [] for tree in code}
+    first = {}
+    for _ in range(repeat):
+        for tree_label, tree in code.items():
+            results, report = run_in_tree(tree, "simulate", case, overrides, None)
+            walls[tree_label].append(report["wall"])
+            first.setdefault(tree_label, results)
+    reference = first[next(iter(code))]
+    records = []
+    for tree_label in code:
+        results = first[tree_label]
+        meta = results.metadata
+        record = {"run": label, "seed": seed, "code": tree_label,
+                  "wall_time_s": statistics.median(walls[tree_label]),
+                  "completed": meta["completed"],
+                  **meta["solver_statistics"],
+                  "deepest_overlap_um": 1e3 * meta["derived"].get("bristle_overlap_max_mm",
+                                                                  0.0)}
+        if results is not reference:
+            record.update({f"vs_{next(iter(code))}_{key}": value for key, value
+                           in errors(results, reference).items()})
+        records.append(record)
+        seeded = "" if seed is None else f" seed {seed}"
+        print(f"  {label}{seeded} [{tree_label}]: {record['wall_time_s']:.1f} s, "
+              f"{record['steps']} steps, {record['jacobian_updates']} Jacobians", flush=True)
+    return records
+
+
+def summed_walls(records: list[dict], tree_label: str) -> dict[str, float]:
+    """Each run's wall time [s] for the tree ``tree_label``, summed over its seeds."""
+    walls: dict[str, float] = {}
+    for record in records:
+        if record["code"] == tree_label:
+            walls[record["run"]] = walls.get(record["run"], 0.0) + record["wall_time_s"]
+    return walls
 
 
 def write(out: Path, table: list[dict], runs: list[dict], machine: str) -> None:
@@ -176,6 +203,8 @@ def main() -> None:
                                  "tooth row", "oscillating-rotating", "sonic",
                                  "sonic window"])
     parser.add_argument("--repeat", type=int, default=1)
+    parser.add_argument("--seeds", type=int, nargs="+", metavar="N",
+                        help="run each run once per root-tilt seed (head.seed) and sum")
     parser.add_argument("--code", nargs="+", metavar="LABEL=SOURCE_TREE")
     parser.add_argument("--out", type=Path,
                         default=HERE.parent / "results" / "benchmarks")
@@ -183,6 +212,8 @@ def main() -> None:
     code = source_trees(parser, args.code, "this")
     if not 1 <= args.repeat <= 20:
         parser.error(f"--repeat {args.repeat}: give 1 to 20 runs per tree")
+    if args.seeds and (min(args.seeds) < 0 or len(set(args.seeds)) != len(args.seeds)):
+        parser.error(f"--seeds {' '.join(map(str, args.seeds))}: give distinct seeds >= 0")
     machine = output_folder(parser, args.out)
     table, runs = [], []
     with tempfile.TemporaryDirectory() as folder:
@@ -190,11 +221,10 @@ def main() -> None:
         for name in args.only or every:
             row = every[name]
             print(f"{name} ...", flush=True)
-            records = measure(row, code, args.repeat)
+            records = measure(row, code, args.repeat, args.seeds)
             runs += [{"row": name, **record} for record in records]
             for tree_label in code:
-                walls = {r["run"]: r["wall_time_s"] for r in records if r["code"] == tree_label}
-                figure = row["figure"](walls)
+                figure = row["figure"](summed_walls(records, tree_label))
                 table.append({"row": name, "code": tree_label, "figure": figure,
                               "target": row["target"], "unit": row["unit"]})
                 print(f"{name} [{tree_label}]: {figure:.2f} {row['unit']} "
