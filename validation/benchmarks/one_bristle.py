@@ -14,14 +14,19 @@ from exubrush.run.scene import build_scene
 from exubrush.run.solve import group_settings
 
 
-def add_arguments(parser: argparse.ArgumentParser, case: str, bristle: int) -> None:
-    """--case, --model, --periods, --bristle and --set, with these defaults."""
+def add_arguments(parser: argparse.ArgumentParser, case: str, bristle: int,
+                  group: bool = False) -> None:
+    """--case, --model, --periods, --bristle and --set, with these defaults; with
+    ``group``, also --group (solve the bristle's whole group: build's ``group``)."""
     parser.add_argument("--case", default=case)
     parser.add_argument("--model", default="dfm", choices=["dfm", "prb"])
     parser.add_argument("--periods", type=float, default=1.0)
     parser.add_argument("--bristle", type=int, default=bristle, help="index in the head")
     parser.add_argument("--set", dest="overrides", action="append", default=[],
                         metavar="KEY=VALUE")
+    if group:
+        parser.add_argument("--group", action="store_true",
+                            help="solve the bristle's whole group (bristles that can touch it)")
 
 
 def build(parser: argparse.ArgumentParser, args: argparse.Namespace, group: bool = False):

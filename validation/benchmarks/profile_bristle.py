@@ -6,9 +6,9 @@
 Builds one bristle of the case's head as exubrush does (the drive set before every step),
 or with ``--group`` the whole group it is solved in (the bristles that can touch it, with
 contact.between_bristles), and solves it in this process with Exudyn's computation-time
-statistics on. Exudyn's fast
-core has no timers, so this script loads the checked one (EXUBRUSH_EXUDYN_CHECKS=1): the
-shares are those of the checked core, the wall time is longer than a run's.
+statistics on. Exudyn's fast core has no timers, so this script loads the checked one
+(EXUBRUSH_EXUDYN_CHECKS=1): the shares are those of the checked core, the wall time is
+longer than a run's.
 """
 
 from __future__ import annotations
@@ -26,9 +26,7 @@ from exubrush.run.solve import solver_statistics  # noqa: E402
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    add_arguments(parser, case="orthogonal", bristle=0)
-    parser.add_argument("--group", action="store_true",
-                        help="solve the bristle's whole group (bristles that can touch it)")
+    add_arguments(parser, case="orthogonal", bristle=0, group=True)
     args = parser.parse_args()
     _, scene, settings = build(parser, args, group=args.group)
     settings.show.computationTime = True  # printed by Exudyn at the end of the solve

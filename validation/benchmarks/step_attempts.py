@@ -112,13 +112,11 @@ def watch_error(prepared, scene, index: int) -> str | None:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    add_arguments(parser, case="interdental", bristle=23)
+    add_arguments(parser, case="interdental", bristle=23, group=True)
     parser.add_argument("--bins", type=float, default=0.0,
                         help="also tabulate per interval of simulated time [s]")
     parser.add_argument("--watch", type=float, nargs=2, metavar=("T0", "T1"),
                         help="print each Newton iterate's tip contact between these times [s]")
-    parser.add_argument("--group", action="store_true",
-                        help="solve the bristle's whole group (bristles that can touch it)")
     args = parser.parse_args()
     if not (args.bins == 0.0 or 0.0 < args.bins < math.inf):
         parser.error(f"--bins {args.bins:g}: give an interval > 0 s, or 0 for none")
