@@ -76,7 +76,7 @@ def test_citation_cff_has_the_package_version_and_the_paper():
     project = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"]
     assert cff["cff-version"] == "1.2.0"
     assert cff["version"] == project["version"]  # bump both together
-    assert cff["license"] == project["license"]["text"]
+    assert cff["license"] == project["license"]  # an SPDX expression in both
     assert cff["authors"] == [{"name": "exubrush developers"}]
     for entry, reference in zip(cff["references"], LITERATURE, strict=True):
         assert _flat(entry["title"]) in reference.citation
