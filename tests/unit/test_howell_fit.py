@@ -1,8 +1,10 @@
 """Howell's γ(n) and K_Θ(n) fitted from the project's own elastica, against his table.
 
-Each fit solves 300 exact elasticas (about 4 s); the whole table is in the slow tier, the
-fast tier fits n = 0 (and the load ratios the other tests need). Fits are cached per
-process (functools.lru_cache), so a test that repeats a load ratio costs nothing.
+Each fit solves 300 exact elasticas (about 12 s), so all of these are in the slow tier.
+Fits are cached per process (functools.lru_cache): the K_Θ trend reuses the ten fits of the
+table's checks, as this file runs on one worker. The fit at load ratios off the table is
+checked in test_howell_fit_off_the_table.py, a file of its own so that the other worker can
+take its two fits.
 
 What the fit should reach, and why:
 - γ: Howell's criterion evaluated on an exact elastica must give Howell's γ. The table has
@@ -64,25 +66,3 @@ def test_fitted_k_theta_drifts_above_howells_with_n():
               for n, _, k in HOWELL_TABLE]
     assert ratios[0] == pytest.approx(1.0, abs=0.01)
     assert np.all(np.diff(ratios) > 0.0), ratios
-
-
-@pytest.mark.slow  # about 11 s: a fit to the exact elastica
-def test_tension_is_fitted_and_out_of_range_refused():
-    assert 0.85 < fit_prb_parameters(-1.0).gamma < 0.9  # γ grows as the load pulls
-    with pytest.raises(ValueError, match="outside the fitted range"):
-        fit_prb_parameters(11.0)
-
-
-@pytest.mark.slow
-def test_a_case_can_take_its_prb_parameters_from_the_fit():
-    from exubrush.parameters.io import load_case
-    from exubrush.run.prepared import prb_parameters
-
-    fitted = load_case("parallel", ["model.kind='prb'", "model.prb_parameters='fitted'"])
-    table = load_case("parallel", ["model.kind='prb'"])
-    assert fitted.load_ratio() == pytest.approx(1 / 0.76, rel=1e-15)
-    # the same n: γ agrees with the interpolated table to the fit's accuracy (0.003)
-    assert prb_parameters(fitted).gamma == pytest.approx(prb_parameters(table).gamma, abs=0.003)
-    other = load_case("parallel", ["model.kind='prb'", "model.prb_parameters='fitted'",
-                                   "model.prb_load_ratio='-1'"])
-    assert prb_parameters(other).gamma == pytest.approx(fit_prb_parameters(-1.0).gamma)
