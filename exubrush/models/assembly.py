@@ -11,6 +11,7 @@ import numpy as np
 from exudyn.rigidBodyUtilities import InertiaSphere, RigidBodyInertia
 
 from exubrush.models.geometry import BristleGeometry
+from exubrush.models.inertia import slice_moments
 
 
 @dataclass
@@ -47,19 +48,12 @@ def slice_inertia(
     """Inertia of a prismatic slice of the bristle [t, t·mm²].
 
     The slice has ``length`` [mm] along the bristle's x axis and its centre of mass at
-    ``centre_offset`` [mm] from the body's node along x. Principal moments about the centre:
-    ρL(I_y + I_z) about x, ρL·I_y + mL²/12 about y, ρL·I_z + mL²/12 about z.
+    ``centre_offset`` [mm] from the body's node along x; principal moments about the centre
+    as :func:`exubrush.models.inertia.slice_moments` gives them.
     """
-    section = bristle.section
-    mass = density * section.area * length
-    tensor = np.diag(
-        [
-            density * length * section.polar_moment,
-            density * length * section.second_moment_y + mass * length**2 / 12.0,
-            density * length * section.second_moment_z + mass * length**2 / 12.0,
-        ]
-    )
-    inertia = RigidBodyInertia(mass=mass, inertiaTensor=tensor, inertiaTensorAtCOM=True)
+    mass, moments = slice_moments(bristle.section, density, length)
+    inertia = RigidBodyInertia(mass=mass, inertiaTensor=np.diag(moments),
+                               inertiaTensorAtCOM=True)
     return inertia.Translated([centre_offset, 0.0, 0.0])
 
 

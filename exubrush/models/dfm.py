@@ -5,8 +5,9 @@ The bristle of length l is cut into N segments of length L = l/N with nodes at s
 spring-damper at the segment's midpoint, with both connector frames there (see
 :mod:`exubrush.models.stiffness`); the rigid body of node i spans from one midpoint to the
 next, so it carries the slice [iL - L/2, iL + L/2] (the tip body the half slice
-[l - L/2, l] and the tip sphere). This is a Hencky bar chain, whose tip error falls as 1/N²
-against the elastica (tests/integration/test_cantilever.py).
+[l - L/2, l] and the tip sphere); the root's half slice [0, L/2] rides on the handle
+(exubrush.models.inertia.dfm_root_piece). This is a Hencky bar chain, whose tip error
+falls as 1/N² against the elastica (tests/integration/test_cantilever.py).
 """
 
 from __future__ import annotations
@@ -23,6 +24,7 @@ from exubrush.models.assembly import (
     tip_sphere_inertia,
 )
 from exubrush.models.geometry import BristleGeometry
+from exubrush.models.inertia import dfm_root_piece
 from exubrush.models.stiffness import midpoint_stiffness
 from exubrush.parameters.case import Material
 
@@ -56,7 +58,9 @@ def add_dfm_bristle(
     K = midpoint_stiffness(bristle.section, material.youngs_modulus, material.shear_modulus, L)
     C = material.damping_time * K
     items = BristleItems()
-    previous_marker = rigid_marker(mbs, handle_body, bristle.point(0.5 * L), bristle.frame)
+    previous_marker = rigid_marker(mbs, handle_body,
+                                   bristle.point(dfm_root_piece(bristle.length, segments)),
+                                   bristle.frame)
     for i in range(1, segments + 1):
         if i < segments:
             inertia = slice_inertia(bristle, material.density, L)

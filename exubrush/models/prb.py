@@ -1,8 +1,9 @@
 """Pseudo-rigid-body model (PRB, Howell, extended to 3-D) of a bristle in Exudyn.
 
-The stub from the root to the characteristic pivot, (1 - γ)l long, is part of the handle;
-the link from the pivot to the tip, γl long, is one rigid body held by three torsional
-springs and dampers (k_x, k_y, k_z; C = damping_time · K). The springs act on the rotation
+The stub from the root to the characteristic pivot, (1 - γ)l long, is part of the handle
+(exubrush.models.inertia.prb_root_piece); the link from the pivot to the tip, γl long, is
+one rigid body held by three torsional springs and dampers (k_x, k_y, k_z; C =
+damping_time · K). The springs act on the rotation
 vector of the link relative to its upright frame (Exudyn's intrinsic formulation), which
 stays regular for any bending angle.
 
@@ -42,6 +43,7 @@ from exubrush.models.assembly import (
 )
 from exubrush.models.buckling import axial_force, clamped_pinned_load
 from exubrush.models.geometry import BristleGeometry
+from exubrush.models.inertia import prb_root_piece
 from exubrush.models.stiffness import prb_torsional_stiffness
 from exubrush.parameters.case import Material
 
@@ -97,7 +99,8 @@ def add_prb_bristle(
     tip = np.add(handle_position, bristle.point(bristle.length))
     drawing = piece_graphics(bristle, -link, 0.0, tip=True) if drawn else None
     node, body = add_body(mbs, tip, bristle.frame, inertia, drawing, rotation)
-    pivot_on_handle = rigid_marker(mbs, handle_body, bristle.point(bristle.length - link),
+    pivot_on_handle = rigid_marker(mbs, handle_body,
+                                   bristle.point(prb_root_piece(bristle.length, gamma)),
                                    bristle.frame)
     pivot_on_link = rigid_marker(mbs, body, [-link, 0.0, 0.0])
     if link_kind == "rigid":

@@ -23,7 +23,10 @@ the participation factor Γ_n = ∫φ_n dx / ∫φ_n² dx, so that the tip's abs
     |u_b + w(L)| / U = |1 + Σ Γ_n φ_n(L) r_n² / (1 − r_n² + 2iζ_n r_n)|,  r_n = ω/ω_n.
 
 Σ Γ_n φ_n(x) = 1 (the expansion of a unit deflection), Γ_1 φ_1(L) = 1.566 and
-Γ_2 φ_2(L) = −0.868.
+Γ_2 φ_2(L) = −0.868. The force and the moment about the root that the base spends on the
+beam are that expansion integrated along it, ∫ρA ü dx and ∫x ρA ü dx
+(:func:`base_force_response`, :func:`base_moment_response`): what the head of a free
+shaken filament carries.
 """
 
 from __future__ import annotations
@@ -159,15 +162,63 @@ def stiffness_damped_tip_amplification(frequency_ratio: ArrayLike, damping_ratio
     modes : int
         Number of modes summed (1 gives :func:`tip_amplification`).
     """
+    # Γ_n φ_n(L)
+    return np.abs(_base_response(frequency_ratio, damping_ratio, modes,
+                                 lambda n, root: (-1.0) ** n * 4.0 * mode_constant(root) / root))
+
+
+def _base_response(frequency_ratio: ArrayLike, damping_ratio: float, modes: int,
+                   gain) -> np.ndarray:
+    """1 + Σ_n gain(n, β_nL) r_n² / (1 − r_n² + 2iζ_n r_n) over the first ``modes``
+    stiffness-damped modes (ζ_n = ζ₁ ω_n/ω₁, r_n = r ω₁/ω_n), complex [-]: a quantity's
+    response to base translation over its rigid-body value, the n-th mode weighted by its
+    ``gain`` (n from 0)."""
     r = np.asarray(frequency_ratio, dtype=float)
     response = np.ones_like(r, dtype=complex)
     for n, root in enumerate(mode_roots(modes)):
         stretch = (root / FIRST_ROOT) ** 2  # ω_n / ω₁
         r_n = r / stretch
-        gain = (-1.0) ** n * 4.0 * mode_constant(root) / root  # Γ_n φ_n(L)
-        response = response + gain * r_n**2 / (1.0 - r_n**2
-                                               + 2j * damping_ratio * stretch * r_n)
-    return np.abs(response)
+        response = response + gain(n, root) * r_n**2 / (1.0 - r_n**2
+                                                        + 2j * damping_ratio * stretch * r_n)
+    return response
+
+
+def base_force_response(frequency_ratio: ArrayLike, damping_ratio: float,
+                        modes: int = 5) -> np.ndarray:
+    """The force the base spends on the beam under harmonic base translation u_b, over the
+    rigid beam's m ü_b, complex [-] (its phase is the force's lead on m ü_b).
+
+    The force is ∫₀ᴸ ρA ü dx, ü the absolute acceleration, = m ü_b (1 + Σ Γ_n² r_n² /
+    (1 − r_n² + 2iζ_n r_n)): the mean of the modal expansion, as ∫φ_n dx = Γ_n L
+    (:func:`participation_factor`), so it is the acceleration of the beam's centre of mass
+    over the base's. Static limit 1 (Σ Γ_n² = 1). The modes are damped as
+    :func:`stiffness_damped_tip_amplification` damps them, with its assumptions.
+
+    Parameters
+    ----------
+    frequency_ratio : float or array
+        r = ω/ω₁ [-].
+    damping_ratio : float
+        ζ₁ of the first mode [-].
+    modes : int
+        Number of modes summed.
+    """
+    return _base_response(frequency_ratio, damping_ratio, modes,
+                          lambda n, root: participation_factor(root) ** 2)
+
+
+def base_moment_response(frequency_ratio: ArrayLike, damping_ratio: float,
+                         modes: int = 5) -> np.ndarray:
+    """The moment about the clamped root that the base spends on the beam under harmonic
+    base translation normal to it, over the rigid beam's m ü_b L/2, complex [-].
+
+    The moment is ∫₀ᴸ x ρA ü dx = m ü_b L/2 (1 + Σ Γ_n (4/(β_nL)²) r_n² / (1 − r_n² +
+    2iζ_n r_n)), as ∫₀ᴸ x φ_n dx = 2L²/(β_nL)²: the beam equation φ⁗ = β_n⁴ φ integrated
+    by parts twice, with φ″ = φ‴ = 0 at the free end and φ″ = 2β_n² at the root. Static
+    limit 1. Parameters and assumptions as :func:`base_force_response`.
+    """
+    return _base_response(frequency_ratio, damping_ratio, modes,
+                          lambda n, root: participation_factor(root) * 4.0 / root**2)
 
 
 def stiffness_proportional_damping_ratio(damping_time: float, frequency: float) -> float:

@@ -1,9 +1,10 @@
 """Turn the group solutions of a run into its :class:`~exubrush.output.results.Results`.
 
 The head force is the sum of the groups' forces with the handles' inertia removed
-(:func:`exubrush.world.kinematics.head_force`); shapes gain their roots; the run record
-(``Results.metadata``) says what was run, by which code, on which published models and
-laws (exubrush.util.references), how it went and why it stopped.
+(:func:`exubrush.world.kinematics.head_force`) and, for a head with pose terms, the inertia
+of the bristles' root pieces added (:func:`carried_root_pieces`); shapes gain their roots;
+the run record (``Results.metadata``) says what was run, by which code, on which published
+models and laws (exubrush.util.references), how it went and why it stopped.
 """
 
 from __future__ import annotations
@@ -15,6 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from exubrush.models.inertia import dfm_root_piece, prb_root_piece, root_piece_inertia
 from exubrush.output.results import HeadWrench, Results
 from exubrush.parameters.fields import to_plain
 from exubrush.run.prepared import PreparedCase
@@ -25,6 +27,8 @@ from exubrush.util.exudyn_build import build_in_use
 from exubrush.util.provenance import code_identity, package_version
 from exubrush.util.references import run_references
 from exubrush.world.kinematics import (
+    CarriedLoad,
+    carried_wrench,
     handle_angles,
     handle_history,
     head_force,
@@ -80,10 +84,20 @@ def assemble_results(prepared: PreparedCase, solutions: Sequence[GroupSolution |
                        [s.handle_mass for s in ran], acceleration)
     handle_position = position + np.array([0.0, 0.0, prepared.start_height])
     angles, rates, turning = handle_angles(prepared.motion, t)
+    carried = None
+    # a head without pose terms leaves its root pieces out: its forces stay bit for bit
+    # those of earlier versions; in the default runs the pieces' m a would move them by up
+    # to 1.1e-7 N of 4.9 N (docs/motion.md, "The head's force and moment")
+    if prepared.motion.pose is not None:
+        carried = carried_wrench(carried_root_pieces(prepared), acceleration, angles, rates,
+                                 turning)
+        force = force + carried[0]
     wrench = None
     if n and all(s.drive_moment is not None for s in ran):  # none in 0.13.0's checkpoints
         moment = head_moment([s.drive_moment[:n] for s in ran],
                              [np.array(s.handle_inertia) for s in ran], angles, rates, turning)
+        if carried is not None:
+            moment = moment + carried[1]
         wrench = HeadWrench(force=force, moment=moment, head_force=in_head_frame(force, angles),
                             head_moment=in_head_frame(moment, angles))
     nodes_per_bristle = case.model.segments if case.model.kind == "dfm" else 1
@@ -146,6 +160,23 @@ def assemble_results(prepared: PreparedCase, solutions: Sequence[GroupSolution |
         metadata=metadata,
         wrench=wrench,
     )
+
+
+def carried_root_pieces(prepared: PreparedCase) -> CarriedLoad:
+    """The bristles' root pieces that ride on the handle, all of the head's (twins'
+    included), as one rigid load (exubrush.models.inertia): a DFM bristle's half segment,
+    a PRB bristle's stub. Their mass is in no body of the system, so the drive's reaction
+    misses their inertia."""
+    model = prepared.case.model
+    mass, first_moment, inertia = 0.0, np.zeros(3), np.zeros((3, 3))
+    for bristle in prepared.bristles:
+        length = (dfm_root_piece(bristle.length, model.segments) if prepared.prb is None
+                  else prb_root_piece(bristle.length, prepared.prb.gamma))
+        piece = root_piece_inertia(bristle, bristle.material.density, length)
+        mass += piece[0]
+        first_moment = first_moment + piece[1]
+        inertia = inertia + piece[2]
+    return CarriedLoad(mass, first_moment, inertia)
 
 
 def _derived(prepared: PreparedCase, ran: list[GroupSolution], solved: list[GroupSolution],

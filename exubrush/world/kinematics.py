@@ -2,12 +2,15 @@
 
 The handle is driven through coordinate constraints; their reaction is the force the
 handle's coordinates exert on the drive. The head's force on the surface is its negative,
-minus the m·a of the handle (each solved group of bristles has a handle of its own).
+minus the m·a of the handle (each solved group of bristles has a handle of its own), plus
+what moving the bristles' root pieces costs, which ride on the handle in no body of the
+system (:func:`carried_wrench`).
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import NamedTuple
 
 import numpy as np
 
@@ -114,15 +117,71 @@ def head_moment(moment_reactions: Sequence[np.ndarray], handle_inertias: Sequenc
     total = sum(moment_reactions, np.zeros_like(angles))
     body = sum(handle_inertias, np.zeros((3, 3)))
     moment = np.empty_like(angles)
-    for k, (theta, rate, acceleration) in enumerate(zip(angles, rates, accelerations,
-                                                        strict=True)):
-        turn = rotation_matrix(theta)
+    for k, (theta, turn, omega, alpha) in enumerate(_turning(angles, rates, accelerations)):
         inertia = turn @ body @ turn.T
-        omega = angular_velocity(theta, rate)
-        alpha = angular_acceleration(theta, rate, acceleration)
         moment[k] = (-np.linalg.solve(g_matrix(theta).T, total[k])
                      - inertia @ alpha - np.cross(omega, inertia @ omega))
     return moment
+
+
+def _turning(angles: np.ndarray, rates: np.ndarray, accelerations: np.ndarray):
+    """(θ, A, ω, α) at each sample of the head's angles θ [rad], rates θ̇ [rad/s] and
+    accelerations θ̈ [rad/s²]: its rotation matrix, angular velocity [rad/s] and angular
+    acceleration [rad/s²] in the surface frame (exubrush.world.pose)."""
+    for theta, rate, acceleration in zip(angles, rates, accelerations, strict=True):
+        yield (theta, rotation_matrix(theta), angular_velocity(theta, rate),
+               angular_acceleration(theta, rate, acceleration))
+
+
+class CarriedLoad(NamedTuple):
+    """A rigid load that rides on the handle: the bristles' root pieces, part of the
+    prescribed body but in no body of the Exudyn system (exubrush.run.assemble).
+
+    Attributes
+    ----------
+    mass : float
+        m [t].
+    first_moment : (3,) array
+        m c, c its centre of mass from the handle's node, head frame [t·mm].
+    inertia : (3, 3) array
+        Its inertia about the handle's node, head frame [t·mm²].
+    """
+
+    mass: float
+    first_moment: np.ndarray
+    inertia: np.ndarray
+
+
+def carried_wrench(load: CarriedLoad, acceleration: np.ndarray, angles: np.ndarray,
+                   rates: np.ndarray, accelerations: np.ndarray) -> tuple[np.ndarray,
+                                                                       np.ndarray]:
+    """Force [N] and moment about the handle's node [N·mm] that the head spends on moving
+    ``load`` with it, (n, 3) each, surface frame: the rate of its momentum,
+
+        m a + α × A mc + ω × (ω × A mc),
+
+    and of its angular momentum about its centre plus the moment of that force about the
+    node, which for a rigid body reads (about the node, I_O = A I Aᵀ)
+
+        I_O α + ω × I_O ω + A mc × a.
+
+    Parameters
+    ----------
+    acceleration : (n, 3) array
+        The handle node's acceleration a [mm/s²].
+    angles, rates, accelerations : (n, 3) arrays
+        θ [rad], θ̇ [rad/s], θ̈ [rad/s²] of the head (:func:`handle_angles`).
+    """
+    force = np.empty_like(acceleration)
+    moment = np.empty_like(acceleration)
+    for k, (_, turn, omega, alpha) in enumerate(_turning(angles, rates, accelerations)):
+        offset = turn @ load.first_moment
+        inertia = turn @ load.inertia @ turn.T
+        force[k] = (load.mass * acceleration[k] + np.cross(alpha, offset)
+                    + np.cross(omega, np.cross(omega, offset)))
+        moment[k] = (inertia @ alpha + np.cross(omega, inertia @ omega)
+                     + np.cross(offset, acceleration[k]))
+    return force, moment
 
 
 def in_head_frame(vectors: np.ndarray, angles: np.ndarray) -> np.ndarray:
