@@ -160,11 +160,15 @@ def unresolved(case, motion) -> list[str]:
                        f"{STEPS_PER_HOLD} steps per hold (motion.hold_duration)"))
     bound, why = min(scales)
     found = []
+    late = [(f"motion.sine[{i}]", entry.start) for i, entry in enumerate(m.sine)]
+    if m.pose_csv:  # motion.pose_csv_start
+        late.append(("motion.pose_csv", m.pose_csv_start))
+    for key, start in late:
+        if motion.slide_start + start >= motion.end_time:
+            found.append(f"{key} starts {_seconds(start)} after the slide, at or after the "
+                         f"run's end ({_seconds(motion.end_time)}): it would never act; start "
+                         "it earlier or run longer")
     for i, entry in enumerate(m.sine):  # its steps are capped while it acts (step_policy)
-        if motion.slide_start + entry.start >= motion.end_time:
-            found.append(f"motion.sine[{i}] starts {_seconds(entry.start)} after the slide, "
-                         f"at or after the run's end ({_seconds(motion.end_time)}): it would "
-                         "never act; start it earlier or run longer")
         fine = term_step(case, entry.frequency)
         if fine < case.solver.minimum_step_size:
             found.append(f"motion.sine[{i}] ({entry.frequency:g} Hz) needs steps of at most "

@@ -156,3 +156,44 @@ def test_a_posed_run_interrupted_before_any_sample_saves_its_record_only(tmp_pat
     assert results.metadata["status"] == "interrupted" and results.wrench is None
     results.save(tmp_path / "out")
     assert sorted(p.name for p in (tmp_path / "out").iterdir()) == ["run.json"]
+
+
+@pytest.mark.parametrize("frequency, hertz", [
+    ("7600 rpm", 7600.0 / 60.0),  # an oscillating brush's strokes per minute
+    ("7600 1/min", 7600.0 / 60.0),
+    ("100 rad/s", 100.0 / (2.0 * math.pi)),  # an angular frequency ω: f = ω / 2π
+])
+def test_a_frequency_per_minute_or_angular_is_read_as_its_cycles(frequency, hertz):
+    motion = build(Motion, {"sine": [{**SONIC, "frequency": frequency}]})
+    assert motion.sine[0].frequency == pytest.approx(hertz, rel=4e-16)  # one conversion
+
+
+@pytest.mark.parametrize("key, value", [("phase", "90"), ("phase", 90), ("angle", "0.5"),
+                                        ("angle", 0.5), ("phase", "1 1"), ("phase", "50 %"),
+                                        ("angle", "2*0.1")])
+def test_an_angle_without_an_angle_unit_is_refused_in_every_form(key, value):
+    entry = {"axis": "rz", "angle": "5 deg", "frequency": "50 Hz", key: value}
+    with pytest.raises(ParameterError, match=f"motion.sine\\[0\\].{key}: .*has no unit") as err:
+        build(Motion, {"sine": [entry]}, "motion.")
+    assert "\n" not in str(err.value)
+
+
+def test_a_pose_table_that_starts_after_the_run_is_refused_as_a_late_sine_is(tmp_path):
+    (tmp_path / "pose.csv").write_text("time [ms],x [mm]\n0,0\n10,0.5\n20,0\n")
+    lines = ('profile = "none"\nperiod = "0.1 s"\nperiods = 1\npose_csv = "pose.csv"\n'
+             'pose_csv_start = "{}"\n')
+    case = _case_file(tmp_path, lines.format("0.1 s"))
+    with pytest.raises(ParameterError) as caught:
+        prepare(load_case(case, ["solver.step_size='0.1 ms'"]))
+    assert str(caught.value) == ("motion.pose_csv starts 100 ms after the slide, at or after "
+                                 "the run's end (1.3 s): it would never act; start it earlier "
+                                 "or run longer")
+    late_sine = _case_file(tmp_path, 'profile = "none"\nperiod = "0.1 s"\nperiods = 1\n'
+                           '[[motion.sine]]\naxis = "x"\namplitude = "1 mm"\n'
+                           'frequency = "50 Hz"\nstart = "0.1 s"\n', name="late")
+    with pytest.raises(ParameterError, match="motion.sine.0. starts 100 ms after the slide, "
+                                             "at or after the run's end .1.3 s.: it would"):
+        prepare(load_case(late_sine, ["solver.step_size='0.1 ms'"]))
+    # just before the end it acts, and is taken
+    prepare(load_case(_case_file(tmp_path, lines.format("99 ms"), name="in_time"),
+                      ["solver.step_size='0.1 ms'"]))
