@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import dataclasses
 import difflib
+import functools
 import math
 import tomllib
 import typing
@@ -74,7 +75,11 @@ def param(
     return dataclasses.field(default=default, metadata=metadata)
 
 
+@functools.cache
 def _field_types(cls: type) -> dict[str, Any]:
+    """The resolved annotations of a parameter dataclass (read-only; cached: building a case
+    resolves them for every entry of its lists, and a case of 100,000 [[motion.sine]] terms
+    took 11.5 s to load, 3.3 s with the cache)."""
     return typing.get_type_hints(cls)
 
 
