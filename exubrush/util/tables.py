@@ -4,8 +4,8 @@ A table is a CSV file whose header names every column with its unit in brackets,
 ``time [s],slider_position [mm],normal_force [N]``. Blank lines and lines starting with
 ``#`` (provenance, comments) are skipped, and so is a UTF-8 byte-order mark at the file's
 start. A column without a unit is refused, not guessed, and so are two columns of one label
-(``x [mm]`` and ``x [cm]``): the unit is converted with pint, so ``[ms]``, ``[m]`` or
-``[mN]`` are read as well.
+(``x [mm]`` and ``x [cm]``) and a row with more cells than the header (a decimal comma); the
+unit is converted with pint, so ``[ms]``, ``[m]`` or ``[mN]`` are read as well.
 """
 
 from __future__ import annotations
@@ -43,8 +43,8 @@ def read_unit_table(path: str | Path, columns: dict[str, str], what: str,
     ------
     ValueError
         With the file, line and column at fault: missing file, too few rows, a missing
-        column or unit, two columns of one label, a unit of the wrong dimension, a cell
-        that is not a number.
+        column or unit, two columns of one label, a unit of the wrong dimension, a row with
+        more cells than the header has columns, a cell that is not a number.
     """
     from exubrush.util.units import MissingUnitError, UnitError, to_internal
 
@@ -54,6 +54,10 @@ def read_unit_table(path: str | Path, columns: dict[str, str], what: str,
         raise ValueError(f"{name} needs a header and at least two rows, found {len(rows)} lines")
     labels = split_header(rows[0][1])
     header = {label: (index, unit) for index, (label, unit) in enumerate(labels)}
+    for line, row in rows[1:]:  # "1,5" for 1.5 would shift the cells after it
+        if any(cell.strip() for cell in row[len(labels):]):
+            raise ValueError(f"{name}: line {line} has {len(row)} cells for {len(labels)} "
+                             "columns (a decimal comma? write 1.5, not 1,5)")
     data = {}
     for label, target in columns.items():
         same = [cell.strip() for cell, (other, _) in zip(rows[0][1], labels, strict=True)
@@ -85,7 +89,8 @@ def read_unit_table(path: str | Path, columns: dict[str, str], what: str,
                 raise ValueError(
                     f"{name}: line {line}, column '{label}': {cell!r} is not a number"
                 ) from None
-        data[label] = np.array(values) * factor
+        with np.errstate(over="ignore"):  # 1e308 km: inf, which the caller refuses
+            data[label] = np.array(values) * factor
     return data
 
 

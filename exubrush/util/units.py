@@ -126,6 +126,8 @@ def to_internal(text: str | float | int, unit: str) -> float:
         raise UnitError(f"cannot read {text!r} as a quantity ({reason})") from None
     if not math.isfinite(magnitude):
         raise UnitError(f"{text!r} is not a finite number")
+    if not re.search(r"\d", str(text)):  # pint reads "deg" as 1 deg, "mm" as 1 mm
+        raise UnitError(f"{text!r} has no number; write one with its unit, e.g. '2 {unit}'")
     given = _angle_power(quantity.units)
     if quantity.unitless and not (target.dimensionless and wanted == 0):
         raise MissingUnitError(f"{text!r} has no unit; write it with one, e.g. "

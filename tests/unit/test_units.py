@@ -154,3 +154,10 @@ def test_an_angle_is_no_number(text, unit):
 def test_an_angle_per_time_is_a_frequency_only(text, unit):
     with pytest.raises(UnitError, match="cannot be converted to"):
         to_internal(text, unit)
+
+
+@pytest.mark.parametrize("text, unit", [("deg", "rad"), ("mm", "mm"), (" Hz ", "Hz")])
+def test_a_unit_without_a_number_is_refused(text, unit):
+    # pint reads a unit alone as one of it: "deg" would be a phase of 1°
+    with pytest.raises(UnitError, match="has no number"):
+        to_internal(text, unit)
