@@ -170,8 +170,10 @@ def over_work(case, work: WorkEstimate) -> list[str]:
                      f"to run it anyway, --set limits.steps={work.steps}")
     if work.term_evaluations > limits.term_evaluations:
         terms = work.term_evaluations // work.steps
-        found.append(f"the run's {terms:,} pose terms would be evaluated {work.term_evaluations:,} "
-                     f"times per system (at each of at least {work.steps:,} steps), more "
+        plural = "s" if terms != 1 else ""
+        found.append(f"the run's {terms:,} pose term{plural} would be evaluated "
+                     f"{work.term_evaluations:,} times per system (at each of at least "
+                     f"{work.steps:,} steps), more "
                      f"than limits.term_evaluations = {limits.term_evaluations:,.0f}; a pose "
                      "table (motion.pose_csv) holds any motion as one term, or --set "
                      f"limits.term_evaluations={work.term_evaluations}")

@@ -36,7 +36,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from exubrush.util.tables import check_time_axis, read_unit_table
+from exubrush.util.tables import read_unit_table
 from exubrush.world.motion import HeadMotion, TabulatedSlide, smooth_step
 
 if TYPE_CHECKING:
@@ -45,15 +45,6 @@ if TYPE_CHECKING:
 AXES = ("x", "y", "z", "rx", "ry", "rz")
 # internal unit of each pose coordinate
 UNITS = {"x": "mm", "y": "mm", "z": "mm", "rx": "rad", "ry": "rad", "rz": "rad"}
-# What a pose table may ask of a brush head (internal units), per coordinate: beyond it a
-# row is a typo or damage, not a motion, and would end in a solver failure instead of a
-# refusal (a cell of 1e300 mm did). A head held by a hand or a robot arm stays within its
-# reach of about 1 m; 10 m is the bound. Turning, it may spin for a long run: 10,000 rad
-# (1,600 turns). Its speed: 100 m/s, forty times a sonic head's swing (2.4 m/s, the
-# fastest head of docs/motion.md); its turning rate 100,000 rad/s, twice a dental
-# turbine's 400,000 rpm (the oscillating-rotating head peaks at 280 rad/s).
-TABLE_REACH = {"mm": 1e4, "rad": 1e4}  # from the table's first row [mm, rad]
-TABLE_RATE = {"mm": 1e5, "rad": 1e5}  # [mm/s, rad/s]
 
 
 def rotation_matrix(angles: Sequence[float] | np.ndarray) -> np.ndarray:
@@ -234,12 +225,10 @@ class TableTerm:
         if not math.isfinite(start):
             raise ValueError(f"a pose table's start must be finite, not {start!r}")
         self.start = float(start)
-        check_time_axis(times, *values.values())
-        _check_reach(times, values)
-        self._slides = {AXES.index(axis): TabulatedSlide(times, np.asarray(v, dtype=float))
+        self._slides = {AXES.index(axis): TabulatedSlide(times, np.asarray(v, dtype=float),
+                                                         axis, UNITS[axis])
                         for axis, v in values.items()}
         self.duration = float(times[-1] - times[0])
-        _check_rate(self.peak_rate)
 
     @property
     def end_time(self) -> float:
@@ -274,32 +263,6 @@ class TableTerm:
         if tau > self.duration:
             values[1:] = 0.0
         return values[0], values[1], values[2]
-
-
-def _check_reach(times: np.ndarray, values: Mapping[str, np.ndarray]) -> None:
-    """Refuse (ValueError) a pose table that moves the head beyond :data:`TABLE_REACH` from
-    its first row (times [s], finite values [mm, rad])."""
-    for axis, samples in values.items():
-        unit = UNITS[axis]
-        with np.errstate(over="ignore"):  # 1e308 - -1e308: inf, refused
-            reach = np.abs(np.asarray(samples, dtype=float) - samples[0])
-        far = np.flatnonzero(reach > TABLE_REACH[unit])
-        if far.size:
-            k = far[0]
-            raise ValueError(f"'{axis}' is {reach[k]:.3g} {unit} from its first row at sample "
-                             f"{k + 1} (t = {times[k]:g} s), beyond the {TABLE_REACH[unit]:g} "
-                             f"{unit} a brush head can move (docs/motion.md, 'Pose tables')")
-
-
-def _check_rate(peak_rate: np.ndarray) -> None:
-    """Refuse (ValueError) a pose table whose peak rates (6,) [mm/s, rad/s] exceed
-    :data:`TABLE_RATE`."""
-    for axis, rate in zip(AXES, peak_rate, strict=True):
-        unit = UNITS[axis]
-        if not rate <= TABLE_RATE[unit]:
-            raise ValueError(f"'{axis}' changes at up to {rate:.3g} {unit}/s, faster than the "
-                             f"{TABLE_RATE[unit]:g} {unit}/s a brush head can move "
-                             "(docs/motion.md, 'Pose tables'); check the times and values")
 
 
 def read_pose_csv(path: str | Path, start: float = 0.0) -> TableTerm:
