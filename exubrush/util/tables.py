@@ -4,7 +4,8 @@ A table is a CSV file whose header names every column with its unit in brackets,
 ``time [s],slider_position [mm],normal_force [N]``. Blank lines and lines starting with
 ``#`` (provenance, comments) are skipped, and so is a UTF-8 byte-order mark at the file's
 start. A column without a unit is refused, not guessed, and so are two columns of one label
-(``x [mm]`` and ``x [cm]``) and a row with more cells than the header (a decimal comma); the
+(``x [mm]`` and ``x [cm]``), a label that differs from a column's only in case (``Y [mm]``)
+and a row with more cells than the header (a decimal comma); the
 unit is converted with pint, so ``[ms]``, ``[m]`` or ``[mN]`` are read as well.
 """
 
@@ -43,8 +44,9 @@ def read_unit_table(path: str | Path, columns: dict[str, str], what: str,
     ------
     ValueError
         With the file, line and column at fault: missing file, too few rows, a missing
-        column or unit, two columns of one label, a unit of the wrong dimension, a row with
-        more cells than the header has columns, a cell that is not a number.
+        column or unit, two columns of one label, a label that differs from one of
+        ``columns`` only in case, a unit of the wrong dimension, a row with more cells than
+        the header has columns, a cell that is not a number.
     """
     from exubrush.util.units import MissingUnitError, UnitError, to_internal
 
@@ -54,6 +56,12 @@ def read_unit_table(path: str | Path, columns: dict[str, str], what: str,
         raise ValueError(f"{name} needs a header and at least two rows, found {len(rows)} lines")
     labels = split_header(rows[0][1])
     header = {label: (index, unit) for index, (label, unit) in enumerate(labels)}
+    wanted = {label.casefold(): label for label in columns}
+    for label, unit in labels:  # 'Y [mm]' beside 'x [mm]' would be ignored as another column
+        meant = wanted.get(label.casefold())
+        if meant is not None and meant != label:
+            raise ValueError(f"{name}: column '{label}' is not '{meant}' (labels are case "
+                             f"sensitive); write '{meant} [{unit or columns[meant]}]'")
     for line, row in rows[1:]:  # "1,5" for 1.5 would shift the cells after it
         if any(cell.strip() for cell in row[len(labels):]):
             raise ValueError(f"{name}: line {line} has {len(row)} cells for {len(labels)} "

@@ -138,7 +138,10 @@ class TabulatedSlide:
         from scipy.interpolate import PchipInterpolator  # 0.4-1 s of import: tables only
 
         self._t0 = float(times[0])
-        self._spline = PchipInterpolator(times - times[0], positions - positions[0])
+        # slopes between samples a denormal apart overflow PCHIP's harmonic mean to a slope
+        # of 0, which is right; numpy would warn
+        with np.errstate(over="ignore", divide="ignore"):
+            self._spline = PchipInterpolator(times - times[0], positions - positions[0])
         self.duration = float(times[-1] - times[0])
         rate = self.peak_speed
         if not rate <= TABLE_RATE[unit]:

@@ -225,6 +225,8 @@ def test_a_pose_csv_converts_units(tmp_path):
     ("time [s],x [mm],y [mm],x [cm]\n0,0,0,0\n1,1,1,0.1\n",
      "has 2 columns for 'x' ('x [mm]', 'x [cm]'); keep one"),
     ("time [s],time [ms],x [mm]\n0,0,0\n1,1000,1\n", "has 2 columns for 'time'"),
+    ("time [s],x [mm],Y [mm]\n0,0,0\n1,1,1\n",
+     "column 'Y' is not 'y' (labels are case sensitive); write 'y [mm]'"),
     # a decimal comma: the row's cells after it would shift (x read as 1 mm, not 1.5)
     ("time [s],x [mm]\n0,0\n1,1,5\n", "line 3 has 3 cells for 2 columns (a decimal comma?"),
     # a brush head moves within 10 m and at 100 m/s at most (motion.TABLE_REACH, TABLE_RATE)
