@@ -19,10 +19,11 @@ from __future__ import annotations
 import functools
 import math
 import re
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, cast
 
 if TYPE_CHECKING:
     import pint
+    from pint.facets.plain import PlainUnit
 
 # value in unit b = value in unit a x factor, for the units the case parameters declare
 # and display. The factors are pint's own, to the last bit (pint composes them from its
@@ -148,12 +149,12 @@ def to_internal(text: str | float | int, unit: str) -> float:
         ) from None
 
 
-def _angle_power(unit: pint.Unit) -> float:
+def _angle_power(unit: PlainUnit) -> float:
     """The power of the radian in ``unit`` written in pint's root units: 1 for deg, turn and
     rpm (rad/s), 0 for Hz, mm or a bare number. pint counts the radian as dimensionless, so
     its own dimension check lets a bare number stand for an angle; this one does not."""
     root = registry().Quantity(1.0, unit).to_root_units()
-    return dict(root.unit_items()).get("radian", 0)
+    return cast(float, dict(root.unit_items()).get("radian", 0.0))  # pint types it Number
 
 
 def _example(number: float, unit: str, angle: float) -> str:
