@@ -704,6 +704,10 @@ class Limits(Parameters):
         above=0)
     memory: float = param(8e9, "most memory the recorded results may take (estimate)", "B",
                           "GB", above=0.0)
+    term_evaluations: float = param(
+        1e7, "most evaluations of the pose terms per solved system: (motion.sine terms + a "
+             "pose table) x time steps; each is evaluated in Python at every step, about "
+             "3 us (docs/runs.md)", above=0.0)
 
 
 @dataclass(frozen=True)

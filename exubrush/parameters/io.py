@@ -45,7 +45,8 @@ def read_toml(name: str, kind: str, error: type[ValueError] = ParameterError) ->
     if not path.is_file():
         raise error(f"{kind} {name!r} is not a file")
     try:
-        return tomllib.loads(path.read_bytes().decode("utf-8"))
+        # utf-8-sig: a byte-order mark, which Windows editors write, is not text
+        return tomllib.loads(path.read_bytes().decode("utf-8-sig"))
     except tomllib.TOMLDecodeError as err:
         raise error(f"{path}: not valid TOML ({err})") from None
     except UnicodeDecodeError as err:

@@ -11,7 +11,13 @@ Estimates (per run, internal units):
   four times as many for the whole head);
 - memory: the recorded node positions and tip contact forces at the output interval, kept
   for every bristle (3 doubles per node and per force, per row), times 3 for the copies
-  made while the groups' results are joined, plus the coordinates kept for the viewer.
+  made while the groups' results are joined, plus the coordinates kept for the viewer;
+- pose-term evaluations: the steps times the pose terms (motion.sine entries and a pose
+  table), each evaluated in Python at every step whether it acts or not (about 3 us a term
+  and a step): 2,000 small, slow sine terms made a run of one bristle and 880 steps take
+  5.3 s of solving instead of 0.0 s, and 100,000 of them would take minutes where the
+  steps alone looked cheap. The estimate and these checks take O(terms log terms), never
+  terms x steps.
 
 Resolution: the largest step must resolve the motion, or the solver steps over it (a
 20 s step on a 12 s slide period ran to the end with a peak force 9.4x the right one):
@@ -28,6 +34,7 @@ twice, or the run records nothing but its start.
 
 from __future__ import annotations
 
+import heapq
 import math
 from dataclasses import dataclass
 
@@ -49,10 +56,14 @@ class WorkEstimate:
         Time steps per solved system at the largest step (a lower bound).
     memory : float
         Memory of the recorded results [B] (estimate).
+    term_evaluations : int
+        Evaluations of the pose terms per solved system: every term is evaluated at every
+        step, so the terms (motion.sine entries and a pose table) times ``steps``.
     """
 
     steps: int
     memory: float
+    term_evaluations: int = 0
 
 
 def term_step(case, frequency: float) -> float:
@@ -78,13 +89,38 @@ def term_windows(case, slide_start: float, end_time: float) -> list[tuple[float,
     return windows
 
 
+def term_segments(case, slide_start: float, end_time: float) -> list[tuple[float, float, float]]:
+    """:func:`term_windows` merged: (from [s], to [s], largest step [s]) in time order, not
+    overlapping, each step the smallest of the windows that cover the segment. Sorted once
+    (O(n log n) for n terms), so that neither the estimate nor the step cap
+    (exubrush.run.step_policy) goes through every term at every step."""
+    windows = sorted(term_windows(case, slide_start, end_time))
+    edges = sorted({time for start, end, _ in windows for time in (start, end)})
+    segments: list[tuple[float, float, float]] = []
+    active: list[tuple[float, float]] = []  # (step, to) of the windows begun, a heap
+    begun = 0
+    for start, end in zip(edges, edges[1:], strict=False):
+        while begun < len(windows) and windows[begun][0] <= start:
+            heapq.heappush(active, (windows[begun][2], windows[begun][1]))
+            begun += 1
+        while active and active[0][1] <= start:  # ended: only the finest one matters
+            heapq.heappop(active)
+        if not active:
+            continue
+        fine = active[0][0]
+        if segments and segments[-1][1] == start and segments[-1][2] == fine:
+            segments[-1] = (segments[-1][0], end, fine)
+        else:
+            segments.append((start, end, fine))
+    return segments
+
+
 def term_steps(case, end_time: float, slide_start: float) -> int:
     """Steps the sine pose terms add to ``end_time / solver.step_size`` [-]: over each of
-    :func:`term_windows` within the run, its term's step instead of ``step_size``
-    (overlapping terms counted apiece: an upper bound)."""
+    :func:`term_segments` within the run, its step instead of ``step_size``."""
     step = case.solver.step_size
     extra = 0
-    for start, end, fine in term_windows(case, slide_start, end_time):
+    for start, end, fine in term_segments(case, slide_start, end_time):
         span = max(end - max(start, 0.0), 0.0)
         extra += math.ceil(span / fine) - math.floor(span / step)
     return extra
@@ -102,7 +138,8 @@ def estimate(case, bristles: int, end_time: float, slide_start: float = 0.0) -> 
         coordinates = 6 + bristles * nodes * 7  # handle; Euler parameters: 7 per node
         memory += (math.floor(end_time / case.output.shape_interval) + 1) * coordinates * DOUBLE
     steps = math.ceil(end_time / case.solver.step_size) + term_steps(case, end_time, slide_start)
-    return WorkEstimate(steps=steps, memory=memory)
+    terms = len(case.motion.sine) + bool(case.motion.pose_csv)
+    return WorkEstimate(steps=steps, memory=memory, term_evaluations=steps * terms)
 
 
 def over_size(case, bristles: int) -> list[str]:
@@ -131,6 +168,15 @@ def over_work(case, work: WorkEstimate) -> list[str]:
     elif work.steps > limits.steps:
         found.append(f"{needs}solver.step_size), more than limits.steps = {limits.steps:,}; "
                      f"to run it anyway, --set limits.steps={work.steps}")
+    if work.term_evaluations > limits.term_evaluations:
+        terms = work.term_evaluations // work.steps
+        plural = "s" if terms != 1 else ""
+        found.append(f"the run's {terms:,} pose term{plural} would be evaluated "
+                     f"{work.term_evaluations:,} times per system (at each of at least "
+                     f"{work.steps:,} steps), more "
+                     f"than limits.term_evaluations = {limits.term_evaluations:,.0f}; a pose "
+                     "table (motion.pose_csv) holds any motion as one term, or --set "
+                     f"limits.term_evaluations={work.term_evaluations}")
     if work.memory > limits.memory:
         needed = math.ceil(work.memory / 1e9)
         found.append(f"its recorded results would take about {work.memory / 1e9:.3g} GB, more "
@@ -160,11 +206,15 @@ def unresolved(case, motion) -> list[str]:
                        f"{STEPS_PER_HOLD} steps per hold (motion.hold_duration)"))
     bound, why = min(scales)
     found = []
+    late = [(f"motion.sine[{i}]", entry.start) for i, entry in enumerate(m.sine)]
+    if m.pose_csv:  # motion.pose_csv_start
+        late.append(("motion.pose_csv", m.pose_csv_start))
+    for key, start in late:
+        if motion.slide_start + start >= motion.end_time:
+            found.append(f"{key} starts {_seconds(start)} after the slide, at or after the "
+                         f"run's end ({_seconds(motion.end_time)}): it would never act; start "
+                         "it earlier or run longer")
     for i, entry in enumerate(m.sine):  # its steps are capped while it acts (step_policy)
-        if motion.slide_start + entry.start >= motion.end_time:
-            found.append(f"motion.sine[{i}] starts {_seconds(entry.start)} after the slide, "
-                         f"at or after the run's end ({_seconds(motion.end_time)}): it would "
-                         "never act; start it earlier or run longer")
         fine = term_step(case, entry.frequency)
         if fine < case.solver.minimum_step_size:
             found.append(f"motion.sine[{i}] ({entry.frequency:g} Hz) needs steps of at most "

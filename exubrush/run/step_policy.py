@@ -11,13 +11,14 @@ is no larger than its cycle over ``solver.steps_per_cycle`` (docs/motion.md).
 
 from __future__ import annotations
 
+import bisect
 from typing import TYPE_CHECKING
 
 import exudyn as exu
 import numpy as np
 
 from exubrush.parameters.surface_kinds import SURFACE_KIND
-from exubrush.run.budget import term_windows
+from exubrush.run.budget import term_segments
 from exubrush.run.solver import step_cap
 from exubrush.world.surfaces import flat_top_clearance
 
@@ -89,14 +90,16 @@ def motion_step_cap(case: Case, motion: HeadMotion, tips: list):
 
 def term_step_cap(case: Case, motion: HeadMotion):
     """``finer(t)``: the largest step [s] the sine pose terms allow at t, None outside
-    their windows (exubrush.run.budget.term_windows: from the look-ahead before each term
+    their windows (exubrush.run.budget.term_segments: from the look-ahead before each term
     to its end); None if no term asks for less than ``solver.step_size``."""
-    windows = term_windows(case, motion.slide_start, motion.end_time)
-    if not windows:
+    segments = term_segments(case, motion.slide_start, motion.end_time)
+    if not segments:
         return None
+    starts = [start for start, _, _ in segments]
 
-    def finer(t):
-        caps = [cap for start, end, cap in windows if start <= t <= end]
+    def finer(t):  # the segment that holds t, or the two that meet at t
+        last = bisect.bisect_right(starts, t)
+        caps = [cap for start, end, cap in segments[max(last - 2, 0):last] if start <= t <= end]
         return min(caps) if caps else None
 
     return finer

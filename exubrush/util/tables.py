@@ -2,8 +2,11 @@
 
 A table is a CSV file whose header names every column with its unit in brackets, e.g.
 ``time [s],slider_position [mm],normal_force [N]``. Blank lines and lines starting with
-``#`` (provenance, comments) are skipped. A column without a unit is refused, not guessed:
-the unit is converted with pint, so ``[ms]``, ``[m]`` or ``[mN]`` are read as well.
+``#`` (provenance, comments) are skipped, and so is a UTF-8 byte-order mark at the file's
+start. A column without a unit is refused, not guessed, and so are two columns of one label
+(``x [mm]`` and ``x [cm]``), a label that differs from a column's only in case (``Y [mm]``)
+and a row with more cells than the header (a decimal comma); the
+unit is converted with pint, so ``[ms]``, ``[m]`` or ``[mN]`` are read as well.
 """
 
 from __future__ import annotations
@@ -41,17 +44,35 @@ def read_unit_table(path: str | Path, columns: dict[str, str], what: str,
     ------
     ValueError
         With the file, line and column at fault: missing file, too few rows, a missing
-        column or unit, a unit of the wrong dimension, a cell that is not a number.
+        column or unit, two columns of one label, a label that differs from one of
+        ``columns`` only in case, a unit of the wrong dimension, a row with more cells than
+        the header has columns, a cell that is not a number.
     """
-    from exubrush.util.units import UnitError, to_internal
+    from exubrush.util.units import MissingUnitError, UnitError, to_internal
 
     name = f"{what} {str(path)!r}"
     rows = read_rows(path, what)
     if len(rows) < 3:
         raise ValueError(f"{name} needs a header and at least two rows, found {len(rows)} lines")
-    header = {label: (index, unit) for index, (label, unit) in enumerate(split_header(rows[0][1]))}
+    labels = split_header(rows[0][1])
+    header = {label: (index, unit) for index, (label, unit) in enumerate(labels)}
+    wanted = {label.casefold(): label for label in columns}
+    for label, unit in labels:  # 'Y [mm]' beside 'x [mm]' would be ignored as another column
+        meant = wanted.get(label.casefold())
+        if meant is not None and meant != label:
+            raise ValueError(f"{name}: column '{label}' is not '{meant}' (labels are case "
+                             f"sensitive); write '{meant} [{unit or columns[meant]}]'")
+    for line, row in rows[1:]:  # "1,5" for 1.5 would shift the cells after it
+        if any(cell.strip() for cell in row[len(labels):]):
+            raise ValueError(f"{name}: line {line} has {len(row)} cells for {len(labels)} "
+                             "columns (a decimal comma? write 1.5, not 1,5)")
     data = {}
     for label, target in columns.items():
+        same = [cell.strip() for cell, (other, _) in zip(rows[0][1], labels, strict=True)
+                if other == label]
+        if len(same) > 1:
+            raise ValueError(f"{name} has {len(same)} columns for '{label}' "
+                             f"({', '.join(map(repr, same))}); keep one")
         if label not in header:
             if label in optional:
                 continue
@@ -61,6 +82,10 @@ def read_unit_table(path: str | Path, columns: dict[str, str], what: str,
             raise ValueError(f"{name}: column '{label}' has no unit; write '{label} [{target}]'")
         try:
             factor = to_internal(f"1 {unit}", target)
+        except MissingUnitError:  # [1], [%]: a number where an angle or length is meant
+            raise ValueError(f"{name}: column '{label} [{unit}]' has no unit of '{target}'; "
+                             f"write '{label} [{target}]' or another unit of that "
+                             "dimension") from None
         except UnitError as err:
             raise ValueError(f"{name}: column '{label}': {err}") from None
         values = []
@@ -72,7 +97,8 @@ def read_unit_table(path: str | Path, columns: dict[str, str], what: str,
                 raise ValueError(
                     f"{name}: line {line}, column '{label}': {cell!r} is not a number"
                 ) from None
-        data[label] = np.array(values) * factor
+        with np.errstate(over="ignore"):  # 1e308 km: inf, which the caller refuses
+            data[label] = np.array(values) * factor
     return data
 
 
@@ -93,7 +119,8 @@ def read_rows(path: str | Path, what: str) -> list[tuple[int, list[str]]]:
     if not path.is_file():
         raise ValueError(f"{name} is not a file")
     try:
-        with path.open(newline="", encoding="utf-8") as handle:
+        # utf-8-sig: a byte-order mark, which spreadsheet programs write, is not text
+        with path.open(newline="", encoding="utf-8-sig") as handle:
             return [
                 (line, row)
                 for line, row in enumerate(csv.reader(handle), start=1)

@@ -19,10 +19,11 @@ from __future__ import annotations
 import functools
 import math
 import re
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, cast
 
 if TYPE_CHECKING:
     import pint
+    from pint.facets.plain import PlainUnit
 
 # value in unit b = value in unit a x factor, for the units the case parameters declare
 # and display. The factors are pint's own, to the last bit (pint composes them from its
@@ -43,8 +44,15 @@ CONVERSION_FACTORS = {
 _NUMBER_AND_UNIT = re.compile(r"\s*([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)\s+(\S+)\s*")
 
 
+FREQUENCY = {"[time]": -1}  # pint's dimensionality of Hz
+
+
 class UnitError(ValueError):
     """A value has no unit, an unknown unit or a unit of the wrong dimension."""
+
+
+class MissingUnitError(UnitError):
+    """A value that needs a unit is a bare number (``90``, ``"0.5"``, ``"1 1"``, ``"5 %"``)."""
 
 
 @functools.cache
@@ -86,8 +94,10 @@ def to_internal(text: str | float | int, unit: str) -> float:
     Raises
     ------
     UnitError
-        If the text has no unit where one is needed, does not parse, or has the wrong
-        dimension.
+        If the text has no unit where one is needed (MissingUnitError), does not parse, or
+        has the wrong dimension. An angle is a dimension here, as it is not in pint: a bare
+        number is no angle, an angle no number. An angle per time (rpm, rad/s) is read as a
+        frequency [Hz] in turns per time.
     """
     if isinstance(text, bool):
         raise UnitError(f"expected a number, got {text!r}")
@@ -101,10 +111,12 @@ def to_internal(text: str | float | int, unit: str) -> float:
 
     ureg = registry()
     target = ureg.Unit(unit)
+    wanted = _angle_power(target)
     if isinstance(text, int | float):
-        if target.dimensionless:
+        if target.dimensionless and wanted == 0:
             return float(text)
-        raise UnitError(f"{text!r} has no unit; write it with one, e.g. '{text} {unit}'")
+        raise MissingUnitError(f"{text!r} has no unit; write it with one, e.g. "
+                        f"{_example(text, unit, wanted)}")
     try:
         quantity: pint.Quantity = ureg.Quantity(str(text).strip())
         if not isinstance(quantity, pint.Quantity):
@@ -115,14 +127,42 @@ def to_internal(text: str | float | int, unit: str) -> float:
         raise UnitError(f"cannot read {text!r} as a quantity ({reason})") from None
     if not math.isfinite(magnitude):
         raise UnitError(f"{text!r} is not a finite number")
-    if quantity.dimensionless and not target.dimensionless:
-        raise UnitError(f"{text!r} has no unit; write it with one, e.g. '{text} {unit}'")
+    if not re.search(r"\d", str(text)):  # pint reads "deg" as 1 deg, "mm" as 1 mm
+        raise UnitError(f"{text!r} has no number; write one with its unit, e.g. '2 {unit}'")
+    given = _angle_power(quantity.units)
+    if quantity.unitless and not (target.dimensionless and wanted == 0):
+        raise MissingUnitError(f"{text!r} has no unit; write it with one, e.g. "
+                        f"{_example(magnitude, unit, wanted)}")
+    if given == wanted + 1 and target.dimensionality == FREQUENCY:
+        # an angle per time (rpm, rad/s, deg/s) as a frequency: the turns it makes per
+        # time, 1 rpm = 1/60 Hz, 1 rad/s = 1/(2π) Hz (docs/motion.md, "Units")
+        target = ureg.turn * target
+    elif given != wanted and quantity.dimensionality == target.dimensionality:
+        # pint counts the radian as dimensionless: '2 rad' would be the number 2
+        raise UnitError(f"{text!r} has unit '{quantity.units:~}', which cannot be converted "
+                        f"to '{unit}' (an angle is not a number in exubrush)")
     try:
         return float(quantity.to(target).magnitude)
     except pint.errors.DimensionalityError:
         raise UnitError(
             f"{text!r} has unit '{quantity.units:~}', which cannot be converted to '{unit}'"
         ) from None
+
+
+def _angle_power(unit: PlainUnit) -> float:
+    """The power of the radian in ``unit`` written in pint's root units: 1 for deg, turn and
+    rpm (rad/s), 0 for Hz, mm or a bare number. pint counts the radian as dimensionless, so
+    its own dimension check lets a bare number stand for an angle; this one does not."""
+    root = registry().Quantity(1.0, unit).to_root_units()
+    return cast(float, dict(root.unit_items()).get("radian", 0.0))  # pint types it Number
+
+
+def _example(number: float, unit: str, angle: float) -> str:
+    """How to write ``number`` with a unit that converts to ``unit`` (an angle: in deg or
+    rad, for the user to say which is meant)."""
+    if angle == 1 and registry().Unit(unit).dimensionless:
+        return f"'{number:.12g} deg' or '{number:.12g} rad'"
+    return f"'{number:.12g} {unit}'"
 
 
 def _known_quantity(text: str, unit: str) -> float | None:

@@ -85,6 +85,17 @@ class SineSlide:
         )
 
 
+# What a table (a slide CSV, a pose table's column) may ask of a brush head, in internal
+# units: beyond it a row is a typo or damage, not a motion, and would end in a solver
+# failure instead of a refusal (a cell of 1e300 mm did). A head held by a hand or a robot
+# arm stays within its reach of about 1 m; 10 m is the bound. Turning, it may spin for a
+# long run: 10,000 rad (1,600 turns). Its speed: 100 m/s, forty times a sonic head's swing
+# (2.4 m/s, the fastest head of docs/motion.md); its turning rate 100,000 rad/s, more than
+# twice a dental turbine's 400,000 rpm (the oscillating-rotating head peaks at 280 rad/s).
+TABLE_REACH = {"mm": 1e4, "rad": 1e4}  # from the table's first row [mm, rad]
+TABLE_RATE = {"mm": 1e5, "rad": 1e5}  # [mm/s, rad/s]
+
+
 class TabulatedSlide:
     """Slide read from measured samples, interpolated by a monotone cubic (PCHIP).
 
@@ -95,19 +106,48 @@ class TabulatedSlide:
     data have a local extremum. The interpolant starts at position 0 (the first sample is
     taken as the origin); its first derivative is the drive velocity, so position and
     velocity agree.
+
+    A table that moves the head further from its first sample than :data:`TABLE_REACH` or
+    faster than :data:`TABLE_RATE` is refused (ValueError naming ``label``), as is one
+    whose times do not increase or that holds a number that is not finite.
+
+    Parameters
+    ----------
+    times, positions : (n,) arrays
+        Samples [s] and [``unit``], n >= 2.
+    label, unit : str
+        The column's name, for messages, and its unit: "mm" (a slide, a translation) or
+        "rad" (a turn).
     """
 
-    def __init__(self, times: np.ndarray, positions: np.ndarray):
+    def __init__(self, times: np.ndarray, positions: np.ndarray,
+                 label: str = "slider_position", unit: str = "mm"):
         times = np.asarray(times, dtype=float)
         positions = np.asarray(positions, dtype=float)
         if times.ndim != 1 or times.shape != positions.shape or times.size < 2:
             raise ValueError("a slide table needs at least two (time, position) rows")
         check_time_axis(times, positions)
+        with np.errstate(over="ignore"):  # 1e308 - -1e308: inf, refused
+            reach = np.abs(positions - positions[0])
+        far = np.flatnonzero(reach > TABLE_REACH[unit])
+        if far.size:
+            k = far[0]
+            raise ValueError(f"'{label}' is {reach[k]:.3g} {unit} from its first row at sample "
+                             f"{k + 1} (t = {times[k]:g} s), beyond the {TABLE_REACH[unit]:g} "
+                             f"{unit} a brush head can move (docs/motion.md, 'Pose tables')")
         from scipy.interpolate import PchipInterpolator  # 0.4-1 s of import: tables only
 
         self._t0 = float(times[0])
-        self._spline = PchipInterpolator(times - times[0], positions - positions[0])
+        # slopes between samples a denormal apart overflow PCHIP's harmonic mean to a slope
+        # of 0, which is right; numpy would warn
+        with np.errstate(over="ignore", divide="ignore"):
+            self._spline = PchipInterpolator(times - times[0], positions - positions[0])
         self.duration = float(times[-1] - times[0])
+        rate = self.peak_speed
+        if not rate <= TABLE_RATE[unit]:
+            raise ValueError(f"'{label}' changes at up to {rate:.3g} {unit}/s, faster than the "
+                             f"{TABLE_RATE[unit]:g} {unit}/s a brush head can move "
+                             "(docs/motion.md, 'Pose tables'); check the times and values")
 
     def evaluate(self, tau: float) -> tuple[float, float, float]:
         """Position [mm], velocity [mm/s] and acceleration [mm/s²] at slide time τ [s]."""

@@ -225,7 +225,8 @@ class TableTerm:
         if not math.isfinite(start):
             raise ValueError(f"a pose table's start must be finite, not {start!r}")
         self.start = float(start)
-        self._slides = {AXES.index(axis): TabulatedSlide(times, np.asarray(v, dtype=float))
+        self._slides = {AXES.index(axis): TabulatedSlide(times, np.asarray(v, dtype=float),
+                                                         axis, UNITS[axis])
                         for axis, v in values.items()}
         self.duration = float(times[-1] - times[0])
 

@@ -106,6 +106,14 @@ def _csv_case(tmp_path, content: bytes | None, overrides=()):
     (b"time [s],slider_position [mm]\n0,0\n0.05,5\n0.1,0\n", "solver.step_size 2 ms does not "
      "resolve the motion: 100 steps over the slide CSV's duration need a step of at most "
      "1 ms"),
+    # beyond what a brush head can do (exubrush.world.motion.TABLE_REACH, TABLE_RATE): a
+    # solver failure (exit 1) before, not a refusal of the input
+    (b"time [s],slider_position [mm]\n0,0\n1,1e300\n2,0\n", "'slider_position' is 1e+300 mm "
+     "from its first row at sample 2 (t = 1 s), beyond the 10000 mm a brush head can move"),
+    (b"time [s],slider_position [mm]\n0,0\n1e-6,1\n12,1\n", "'slider_position' changes at "
+     "up to"),
+    (b"\xef\xbb\xbftime [s],slider_position [mm]\n0,0\n6,15\n12,0\n1,2,3\n",
+     "line 5 has 3 cells for 2 columns"),  # the byte-order mark is read, the row is not
 ])
 def test_a_hostile_slide_csv_is_refused(tmp_path, content, message):
     with pytest.raises(ParameterError, match="motion.csv_file|step_size") as info:
@@ -137,6 +145,12 @@ def test_a_hostile_case_file_is_refused(tmp_path, content, message):
     with pytest.raises(ParameterError) as info:
         prepare(load_case(str(path)))
     assert message in str(info.value)
+
+
+def test_a_case_file_with_a_byte_order_mark_is_read(tmp_path):
+    path = tmp_path / "case.toml"
+    path.write_bytes(b"\xef\xbb\xbf[head]\nrows = 1\ncolumns = 3\n")
+    assert load_case(str(path)).head.count == 3
 
 
 def test_a_case_file_that_is_a_directory(tmp_path):

@@ -5,14 +5,18 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
-from exubrush.parameters.case import POSE_AXES, Motion
+from exubrush.parameters.case import POSE_AXES, Case, Motion
 from exubrush.parameters.fields import ParameterError, build
 from exubrush.parameters.io import load_case
+from exubrush.run.budget import term_segments, term_steps, term_windows
 from exubrush.run.prepared import prepare
+from exubrush.run.step_policy import term_step_cap
 from exubrush.world.kinematics import handle_angles, handle_coordinates, handle_kinematics
 from exubrush.world.motion import HeadMotion, RestingSlide
-from exubrush.world.pose import AXES, with_pose
+from exubrush.world.pose import AXES, SineTerm, with_pose
 
 SONIC = {"axis": "y", "amplitude": "0.3 mm", "frequency": "260 Hz"}
 
@@ -156,3 +160,120 @@ def test_a_posed_run_interrupted_before_any_sample_saves_its_record_only(tmp_pat
     assert results.metadata["status"] == "interrupted" and results.wrench is None
     results.save(tmp_path / "out")
     assert sorted(p.name for p in (tmp_path / "out").iterdir()) == ["run.json"]
+
+
+@pytest.mark.parametrize("frequency, hertz", [
+    ("7600 rpm", 7600.0 / 60.0),  # an oscillating brush's strokes per minute
+    ("7600 1/min", 7600.0 / 60.0),
+    ("100 rad/s", 100.0 / (2.0 * math.pi)),  # an angular frequency ω: f = ω / 2π
+])
+def test_a_frequency_per_minute_or_angular_is_read_as_its_cycles(frequency, hertz):
+    motion = build(Motion, {"sine": [{**SONIC, "frequency": frequency}]})
+    assert motion.sine[0].frequency == pytest.approx(hertz, rel=4e-16)  # one conversion
+
+
+@pytest.mark.parametrize("key, value", [("phase", "90"), ("phase", 90), ("angle", "0.5"),
+                                        ("angle", 0.5), ("phase", "1 1"), ("phase", "50 %"),
+                                        ("angle", "2*0.1")])
+def test_an_angle_without_an_angle_unit_is_refused_in_every_form(key, value):
+    entry = {"axis": "rz", "angle": "5 deg", "frequency": "50 Hz", key: value}
+    with pytest.raises(ParameterError, match=f"motion.sine\\[0\\].{key}: .*has no unit") as err:
+        build(Motion, {"sine": [entry]}, "motion.")
+    assert "\n" not in str(err.value)
+
+
+def test_a_pose_table_that_starts_after_the_run_is_refused_as_a_late_sine_is(tmp_path):
+    (tmp_path / "pose.csv").write_text("time [ms],x [mm]\n0,0\n10,0.5\n20,0\n")
+    lines = ('profile = "none"\nperiod = "0.1 s"\nperiods = 1\npose_csv = "pose.csv"\n'
+             'pose_csv_start = "{}"\n')
+    case = _case_file(tmp_path, lines.format("0.1 s"))
+    with pytest.raises(ParameterError) as caught:
+        prepare(load_case(case, ["solver.step_size='0.1 ms'"]))
+    assert str(caught.value) == ("motion.pose_csv starts 100 ms after the slide, at or after "
+                                 "the run's end (1.3 s): it would never act; start it earlier "
+                                 "or run longer")
+    late_sine = _case_file(tmp_path, 'profile = "none"\nperiod = "0.1 s"\nperiods = 1\n'
+                           '[[motion.sine]]\naxis = "x"\namplitude = "1 mm"\n'
+                           'frequency = "50 Hz"\nstart = "0.1 s"\n', name="late")
+    with pytest.raises(ParameterError, match="motion.sine.0. starts 100 ms after the slide, "
+                                             "at or after the run's end .1.3 s.: it would"):
+        prepare(load_case(late_sine, ["solver.step_size='0.1 ms'"]))
+    # just before the end it acts, and is taken
+    prepare(load_case(_case_file(tmp_path, lines.format("99 ms"), name="in_time"),
+                      ["solver.step_size='0.1 ms'"]))
+
+
+def _many_sines(tmp_path, count: int) -> str:
+    """A case file of one bristle with ``count`` small, slow sine terms (1-7 Hz)."""
+    terms = "".join(f'[[motion.sine]]\naxis = "{"xyz"[i % 3]}"\namplitude = "1e-6 mm"\n'
+                    f'frequency = "{1 + i % 7} Hz"\n' for i in range(count))
+    return _case_file(tmp_path, "periods = 0.02\n" + terms, name=f"sines{count}")
+
+
+def test_many_sine_terms_are_refused_by_their_evaluations_before_any(tmp_path, monkeypatch):
+    # 20,000 terms over 877 steps (the steps of the 2,000-term run, measured: 880)
+    def never(*args):
+        raise AssertionError("a term was evaluated before the work was bounded")
+
+    monkeypatch.setattr(SineTerm, "evaluate", never)
+    case = load_case(_many_sines(tmp_path, 20_000))
+    with pytest.raises(ParameterError) as caught:
+        prepare(case)
+    assert str(caught.value) == (
+        "the run's 20,000 pose terms would be evaluated 17,540,000 times per system (at each "
+        "of at least 877 steps), more than limits.term_evaluations = 10,000,000; a pose table "
+        "(motion.pose_csv) holds any motion as one term, or --set "
+        "limits.term_evaluations=17540000")
+    # 877 steps: 1.44 s at 2 ms (720) and, while the 4-7 Hz terms act, their cycle over 160
+    # (7 Hz: 0.89 ms) from 6 steps ahead of the slide's start to the end
+    fine, ahead = 1 / (7 * 160), 6 * 2e-3
+    span = 0.24 + ahead
+    assert 720 + math.ceil(span / fine) - math.floor(span / 2e-3) == 877
+    raised = case.replace(limits=case.limits.replace(term_evaluations=17_540_000.0))
+    assert prepare(raised).work.term_evaluations == 17_540_000
+
+
+def test_overlapping_terms_are_stepped_at_the_finest_of_them():
+    # three windows (from, to, step) as term_windows gives them, overlapping: the step
+    # cap and the estimate take the finest step where they overlap, each instant once
+    motion = build(Motion, {"sine": [
+        {"axis": "x", "amplitude": "1 mm", "frequency": "10 Hz", "duration": "0.3 s",
+         "ramp_cycles": 0},
+        {"axis": "y", "amplitude": "1 mm", "frequency": "40 Hz", "start": "0.1 s",
+         "duration": "0.1 s"},
+        {"axis": "z", "amplitude": "1 mm", "frequency": "20 Hz", "start": "0.15 s"},
+    ]})
+    case = Case().replace(motion=motion)
+    ahead = 6 * 2e-3  # the look-ahead: step_recovery_steps + 2 steps of 2 ms
+    segments = term_segments(case, 1.0, 2.0)
+    expected = [(1.0 - ahead, 1.1 - ahead, 1 / 1600), (1.1 - ahead, 1.2, 1 / 6400),
+                (1.2, 2.0, 1 / 3200)]
+    assert [s[2] for s in segments] == [e[2] for e in expected]
+    np.testing.assert_allclose([s[:2] for s in segments], [e[:2] for e in expected],
+                               rtol=0, atol=1e-15)  # sums of a few seconds
+    # steps added: 0.1 s at 1600/s, 0.112 s at 6400/s and 0.8 s at 3200/s instead of 2 ms
+    # steps (160 - 50 + 717 - 56 + 2560 - 400); each window apiece would add 3,333. Each
+    # segment's ceil and floor may move by one with the rounding of its ends
+    assert abs(term_steps(case, 2.0, 1.0) - 2931) <= 3
+    finer = term_step_cap(case, HeadMotion(1.0, 1.0, 0.0, RestingSlide(1.0)))
+    for t, cap in ((0.5, None), (1.05, 1 / 1600), (1.15, 1 / 6400), (1.2, 1 / 6400),
+                   (1.5, 1 / 3200), (2.5, None)):
+        assert finer(t) == cap, t
+
+
+@settings(max_examples=60, deadline=None)
+@given(terms=st.lists(st.tuples(st.sampled_from([3.0, 10.0, 40.0, 130.0]),
+                                st.integers(0, 500).map(lambda ms: ms / 1000),
+                                st.sampled_from([0.0, 0.05, 0.3])),
+                      min_size=1, max_size=8))
+def test_the_merged_windows_give_each_instant_the_finest_step_of_its_terms(terms):
+    motion = build(Motion, {"sine": [
+        {"axis": "x", "amplitude": "1 mm", "frequency": f"{f!r} Hz", "start": f"{s!r} s",
+         "duration": f"{d!r} s", "ramp_cycles": 0} for f, s, d in terms]})
+    case = Case().replace(motion=motion)
+    windows = term_windows(case, 1.0, 1.6)
+    segments = term_segments(case, 1.0, 1.6)
+    for t in np.linspace(0.9, 1.7, 401):
+        caps = [cap for start, end, cap in windows if start <= t <= end]
+        inside = [cap for start, end, cap in segments if start <= t <= end]
+        assert min(inside, default=None) == min(caps, default=None)

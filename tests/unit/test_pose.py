@@ -219,6 +219,24 @@ def test_a_pose_csv_converts_units(tmp_path):
     ("time [s],y [mm]\n0,1\n1,two\n", "'two' is not a number"),
     ("time [s],ry [N]\n0,1\n1,2\n", "column 'ry'"),
     ("time [s],y [mm]\n0,1\n0,2\n", "times must increase strictly"),
+    ("time [s],rz [1]\n0,0\n1,0.5\n", "column 'rz [1]' has no unit of 'rad'"),
+    ("time [s],rz [%]\n0,0\n1,0.5\n", "column 'rz [%]' has no unit of 'rad'"),
+    ("time [s],rx []\n0,0\n1,0.5\n", "column 'rx' has no unit"),
+    ("time [s],x [mm],y [mm],x [cm]\n0,0,0,0\n1,1,1,0.1\n",
+     "has 2 columns for 'x' ('x [mm]', 'x [cm]'); keep one"),
+    ("time [s],time [ms],x [mm]\n0,0,0\n1,1000,1\n", "has 2 columns for 'time'"),
+    ("time [s],x [mm],Y [mm]\n0,0,0\n1,1,1\n",
+     "column 'Y' is not 'y' (labels are case sensitive); write 'y [mm]'"),
+    # a decimal comma: the row's cells after it would shift (x read as 1 mm, not 1.5)
+    ("time [s],x [mm]\n0,0\n1,1,5\n", "line 3 has 3 cells for 2 columns (a decimal comma?"),
+    # a brush head moves within 10 m and at 100 m/s at most (motion.TABLE_REACH, TABLE_RATE)
+    ("time [s],x [mm]\n0,0\n1,1e300\n2,0\n",
+     "'x' is 1e+300 mm from its first row at sample 2 (t = 1 s), beyond the 10000 mm"),
+    ("time [s],z [mm]\n0,-1e308\n1,1e308\n", "'z' is inf mm from its first row at sample 2"),
+    ("time [s],ry [deg]\n0,0\n1,1e300\n", "'ry' is 1.75e+298 rad from its first row"),
+    # 1 mm in a nanosecond (the monotone cubic's end slope is 4/3 of it here)
+    ("time [s],y [mm]\n0,0\n1e-9,1\n1,1\n", "e+09 mm/s, faster than the 100000 mm/s"),
+    ("time [s],rz [deg]\n0,0\n1e-9,10\n1,10\n", "e+08 rad/s, faster than the 100000 rad/s"),
 ])
 def test_a_bad_pose_csv_is_refused_naming_the_file(tmp_path, text, message):
     path = tmp_path / "pose.csv"
@@ -248,3 +266,19 @@ def test_a_head_without_terms_rests():
     np.testing.assert_array_equal(a, np.zeros((2, 3)))
     assert head.end_time == 0.0
     np.testing.assert_array_equal(head.peak_rate, np.zeros(6))
+
+
+def test_a_pose_csv_with_a_byte_order_mark_is_read(tmp_path):
+    # spreadsheet programs start a UTF-8 CSV with the mark U+FEFF, which is no text
+    path = tmp_path / "pose.csv"
+    path.write_bytes("\ufefftime [s],x [mm]\n0,0\n1,2\n".encode())
+    assert read_pose_csv(path).evaluate(1.0)[0][0] == 2.0
+
+
+def test_a_pose_table_at_its_bounds_is_taken():
+    # 10 m from the first row, and 100 m/s (two rows: a straight line): the bounds
+    # themselves are motions
+    far = TableTerm(np.array([0.0, 2.0]), {"x": np.array([0.0, 1e4])})
+    assert far.evaluate(2.0)[0][0] == 1e4
+    fast = TableTerm(np.array([0.0, 0.0625]), {"y": np.array([0.0, 6250.0])})
+    assert fast.peak_rate[1] == 1e5  # exact: 6250 / 0.0625, both binary fractions

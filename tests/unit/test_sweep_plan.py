@@ -124,6 +124,10 @@ MALFORMED = [
     (SMALL + '[grid]\n"head.bristle.length" = { from = 4, to = 5, count = 2 }\n',
      "grid.head.bristle.length.from: 4 has no unit"),
     (SMALL + '[grid]\n"head.bristle.length" = []\n', "expected a non-empty list"),
+    # a number is no angle: pint would read 90 as 90 rad
+    (SMALL + '[grid]\n"surface.yaw" = { from = 0, to = 90, count = 2 }\n',
+     "grid.surface.yaw.from: 0 has no unit; write it with one, e.g. '0 deg' or '0 rad'"),
+    (SMALL + '[grid]\n"surface.yaw" = ["0 deg", "90"]\n', "'90' has no unit"),
     (SMALL + '[grid]\n"head.bristle.length" = ["5 mm", "5 mm"]\n', "a value is listed twice"),
     (SMALL + '[grid]\n"head.bristle.length" = { from = "5 mm", to = "4 mm", count = 2 }\n',
      "from (5 mm) must be below to (4 mm)"),
