@@ -29,11 +29,24 @@ from exubrush.run.budget import (
     over_work,
     unresolved,
 )
-from exubrush.run.sanity import normal_force_bound, static_force_limits
+from exubrush.run.sanity import (
+    bristle_mass,
+    inertia_allowance,
+    normal_force_bound,
+    static_force_limits,
+)
+from exubrush.world.clearance import (
+    RY_LIMIT,
+    Unchecked,
+    largest_tilt,
+    lowest_root,
+    peak_vertical_acceleration,
+)
 from exubrush.world.kinematics import SLIDE_AXES
 from exubrush.world.mesh import MeshError, MeshSurface, read_mesh
 from exubrush.world.motion import HeadMotion, TabulatedSlide, head_motion
 from exubrush.world.pose import with_pose
+from exubrush.world.surfaces import height as surface_height
 from exubrush.world.surfaces import highest_near, to_surface_frame
 
 # twins under a turning head: distances and frames compared to this many decimals [mm, -]
@@ -101,6 +114,10 @@ class PreparedCase:
     stand_in_turns : tuple of float
         Per group, the angle [rad] about the head's centre by which it lies turned from its
         stand-in (0: shifted along the plane, or its own).
+    peak_acceleration : float
+        The largest vertical acceleration of the head's roots and origin over the run
+        [mm/s²] (exubrush.world.clearance.peak_vertical_acceleration): what the inertia
+        allowance of the force bound is taken at (exubrush.run.sanity).
     """
 
     case: Case
@@ -118,6 +135,7 @@ class PreparedCase:
     mesh: MeshSurface | None = None
     stand_ins: tuple[int, ...] = ()
     stand_in_turns: tuple[float, ...] = ()
+    peak_acceleration: float = 0.0
 
     @property
     def solved_groups(self) -> list[tuple[int, tuple[int, ...]]]:
@@ -136,6 +154,15 @@ class PreparedCase:
         limits = self.force_limits
         return normal_force_bound(limits if selection is None
                                   else [limits[i] for i in selection])
+
+    def group_bound(self, selection: tuple[int, ...] | None, handle_mass: float) -> float:
+        """What the drive's normal reaction [N] of the bristles ``selection`` (default: the
+        whole head) on handles of ``handle_mass`` [t] in all may reach: their contact bound
+        (:meth:`force_bound`) and the inertia allowance of the handles and bristles at the
+        head's largest vertical acceleration (exubrush.run.sanity.inertia_allowance)."""
+        chosen = self.bristles if selection is None else [self.bristles[i] for i in selection]
+        return self.force_bound(selection) + inertia_allowance(
+            handle_mass + bristle_mass(chosen), self.peak_acceleration)
 
     def newton_force_tolerance(self, selection: tuple[int, ...]) -> float:
         """Residual [N] below which Newton accepts a step of the bristles ``selection``:
@@ -174,6 +201,7 @@ def prepare(case: Case) -> PreparedCase:
         motion = with_pose(motion, case.motion)
     except ValueError as err:
         raise ParameterError(f"motion.pose_csv: {err}") from None
+    _refuse(impossible_pose(case, bristles, motion, height))
     work = estimate(case, len(bristles), motion.end_time, motion.slide_start)
     _refuse(over_work(case, work) + unresolved(case, motion))
     mesh = None
@@ -209,7 +237,47 @@ def prepare(case: Case) -> PreparedCase:
         mesh=mesh,
         stand_ins=sources,
         stand_in_turns=turns,
+        peak_acceleration=peak_vertical_acceleration(
+            motion, np.array([b.root for b in bristles])),
     )
+
+
+def impossible_pose(case: Case, bristles, motion: HeadMotion, start_height: float) -> list[str]:
+    """What the pose terms ask that no head can do, each as one line: roots driven
+    through the surface, or |ry| within 10° of the Tait-Bryan angles' singularity
+    (exubrush.world.clearance: sampled so that neither is missed by more than its margin).
+    A mesh surface's roots are not checked (docs/motion.md)."""
+    if motion.pose is None:
+        return []
+    problems = []
+    roots = np.array([b.root for b in bristles])
+    surface = case.surface
+    height = None if surface.kind == "plane" else (
+        lambda points: surface_height(surface, *to_surface_frame(surface, points)[:, :2].T))
+    try:
+        tilt = largest_tilt(motion)
+        crossing = None if surface.kind == "mesh" else lowest_root(
+            motion, case.motion.direction, start_height, roots, height)
+    except Unchecked as err:
+        return [f"motion: the pose keeps the head's roots within 0.01 mm of the {surface.kind}"
+                f" or ry within 0.1° of ±{math.degrees(RY_LIMIT):g}° so long that checking it"
+                f" would take {err}; move the head clear of it"]
+    if crossing is not None:
+        when, depth = crossing
+        problems.append(
+            f"motion: the pose drives the head's roots {depth:.3g} mm through the "
+            f"{surface.kind} at t = {when:.6g} s (the roots stand "
+            f"{case.motion.interaction_distance:g} mm above it after the approach); reduce "
+            "the pose's z or turn terms, move motion.pivot, or raise "
+            "motion.interaction_distance")
+    if tilt is not None:
+        when, angle = tilt
+        problems.append(
+            f"motion: ry reaches {math.degrees(angle):.4g}° at t = {when:.6g} s, within "
+            f"{90.0 - math.degrees(RY_LIMIT):g}° of the Tait-Bryan angles' singularity at "
+            f"±90° where the head's moment cannot be recovered from the drive; keep |ry| "
+            f"below {math.degrees(RY_LIMIT):g}°")
+    return problems
 
 
 def input_digests(motion: HeadMotion, mesh: MeshSurface | None = None

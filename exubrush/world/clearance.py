@@ -1,0 +1,152 @@
+"""Where a posed head goes over a run, checked before anything is solved (pure, mm-s-rad).
+
+The head's motion is prescribed, so whether its roots pass through the surface, or its
+Tait-Bryan angles reach their singularity, is known before the run. Both are checked by
+sampling the motion, refined where a sample comes close, so that a violation is never
+missed by more than a stated margin:
+
+A function f(t) that changes at most ``rate`` per second has, between two samples a and
+b = a + h, no value below (f(a) + f(b)) / 2 - rate h / 2. :func:`first_below` starts
+with :data:`COARSE_SAMPLES` samples over the window and halves every interval whose lower
+bound is below -``margin``, until none is: f then never falls below -``margin`` unless a
+sample is below 0, and that sample is what is reported.
+
+For the roots, f is the lowest root's height above the plane, z. A root's height changes
+at most at the rate of the descent's, the pose's z translation's and of the turn's:
+|d(A r)_z/dt| <= |ω| |r| with |ω| = |G θ̇| <= |θ̇x| + |θ̇y| + |θ̇z| (G's columns are unit
+vectors), r the root's arm from the pivot; a head turned about z alone (no rx, ry term)
+keeps every root's height. :func:`vertical_rate` is that bound.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+
+import numpy as np
+
+from exubrush.world.kinematics import DOWN, SLIDE_AXES
+from exubrush.world.motion import HeadMotion
+
+COARSE_SAMPLES = 65  # first samples over a window, before refinement
+MOST_SAMPLES = 200_000  # a check needing more samples is refused (a head that grazes)
+ROOT_MARGIN = 0.01  # [mm]: a root deeper than this below the plane is never missed
+# |ry| of the Tait-Bryan angles kept this far from 90° [rad]: the moment is recovered from
+# the drive through G⁻ᵀ, whose norm grows as 1 / cos ry (1/cos 80° = 5.8: the drive's
+# moment error amplified at most about six times; 89.9°: 573 times, and at 90° G is
+# singular: a moment of -1.8e8 N·mm in forces.csv beside samples of 1e-7)
+RY_LIMIT = math.radians(80.0)
+RY_MARGIN = math.radians(0.1)  # [rad]: an excursion this far beyond RY_LIMIT is never missed
+
+
+class Unchecked(ValueError):
+    """A check that would need more than :data:`MOST_SAMPLES` samples."""
+
+
+def first_below(f: Callable[[float], float], t0: float, t1: float, rate: float,
+                margin: float) -> tuple[float, float] | None:
+    """The time [s] and value of f's lowest sample below 0 on [t0, t1], or None.
+
+    f changes at most ``rate`` per second; every excursion of f below -``margin`` is
+    found (see module docstring). Raises :class:`Unchecked` if that would take more than
+    :data:`MOST_SAMPLES` evaluations (f stays within ``margin`` of 0 over a long stretch).
+    """
+    times = list(np.linspace(t0, t1, COARSE_SAMPLES)) if t1 > t0 else [t0]
+    values = [f(t) for t in times]
+    while True:
+        worst = int(np.argmin(values))
+        if values[worst] < 0.0:
+            return times[worst], values[worst]
+        refined_times, refined_values = [times[0]], [values[0]]
+        split = False
+        for a, b, fa, fb in zip(times[:-1], times[1:], values[:-1], values[1:], strict=True):
+            if 0.5 * (fa + fb) - 0.5 * rate * (b - a) < -margin:
+                middle = 0.5 * (a + b)
+                refined_times.append(middle)
+                refined_values.append(f(middle))
+                split = True
+            refined_times.append(b)
+            refined_values.append(fb)
+        if not split:
+            return None
+        times, values = refined_times, refined_values
+        if len(times) > MOST_SAMPLES:
+            raise Unchecked(f"more than {MOST_SAMPLES:,} samples")
+
+
+def pose_window(motion: HeadMotion) -> tuple[float, float]:
+    """From the first pose term's start to the run's end [s]: before it the head only
+    descends to the interaction distance and slides along the surface."""
+    start = min(term.start for term in motion.pose.terms)
+    return min(max(start, 0.0), motion.end_time), motion.end_time
+
+
+def vertical_rate(motion: HeadMotion, points: np.ndarray, t0: float) -> float:
+    """Bound of how fast any of ``points`` (head frame at t = 0, the roots' surface at
+    z = 0) changes height from t0 [s] on [mm/s] (see module docstring)."""
+    rates = motion.pose.peak_rate
+    descent = (15.0 / 8.0 * abs(motion.approach_distance) / motion.approach_duration
+               if t0 < motion.approach_duration else 0.0)
+    turn = 0.0
+    if np.any(rates[3:5] > 0.0):
+        arm = float(np.max(np.linalg.norm(points - motion.pose.pivot, axis=1)))
+        turn = float(np.sum(rates[3:])) * arm
+    return descent + float(rates[2]) + turn
+
+
+def positions(motion: HeadMotion, direction: str, start_height: float, points: np.ndarray,
+              t: float) -> np.ndarray:
+    """Positions (n, 3) [mm] at t [s] of ``points`` fixed to the head (head frame at t = 0,
+    the roots' surface at z = 0), in the head frame fixed to the surface: the start
+    height, the slide, the descent and the pose (exubrush.world.kinematics)."""
+    moved = points if motion.pose is None else motion.pose.point_motion(points, t)[0]
+    slide = motion.sliding(t)[0] * SLIDE_AXES[direction]
+    return moved + slide + motion.descent(t)[0] * DOWN + np.array([0.0, 0.0, start_height])
+
+
+def lowest_root(motion: HeadMotion, direction: str, start_height: float, roots: np.ndarray,
+                height: Callable[[np.ndarray], np.ndarray] | None = None
+                ) -> tuple[float, float] | None:
+    """The time [s] and depth [mm] at which the deepest sampled root is below the
+    surface, or None if none ever is (a root deeper than :data:`ROOT_MARGIN` under the
+    plane is never missed). ``height`` gives the surface's top under head-frame points
+    (n, 3) [mm]; None: the plane z = 0. A head without pose terms is not sampled: it only
+    descends to the interaction distance and slides along the surface."""
+    if motion.pose is None:
+        return None
+    t0, t1 = pose_window(motion)
+
+    def clearance(t: float) -> float:
+        where = positions(motion, direction, start_height, roots, t)
+        top = 0.0 if height is None else height(where)
+        return float(np.min(where[:, 2] - top))
+
+    found = first_below(clearance, t0, t1, vertical_rate(motion, roots, t0), ROOT_MARGIN)
+    return None if found is None else (found[0], -found[1])
+
+
+def largest_tilt(motion: HeadMotion) -> tuple[float, float] | None:
+    """The time [s] and |ry| [rad] of the sample where |ry| is largest beyond
+    :data:`RY_LIMIT`, or None if it stays within it (an excursion beyond RY_LIMIT +
+    :data:`RY_MARGIN` is never missed)."""
+    if motion.pose is None or motion.pose.peak_rate[4] == 0.0:
+        return None
+    t0, t1 = pose_window(motion)
+    found = first_below(lambda t: RY_LIMIT - abs(motion.pose.evaluate(t)[0][4]), t0, t1,
+                        float(motion.pose.peak_rate[4]), RY_MARGIN)
+    return None if found is None else (found[0], RY_LIMIT - found[1])
+
+
+def peak_vertical_acceleration(motion: HeadMotion, points: np.ndarray,
+                               samples: int = 2000) -> float:
+    """The largest |z acceleration| [mm/s²] of the head's ``points`` (head frame at t = 0)
+    and its origin: the descent's exactly (10/√3 D / T², the quintic step's largest
+    curvature), the pose's sampled at ``samples`` times over the run (a jerk between two
+    samples can be missed: an allowance, not a bound)."""
+    descent = 10.0 / math.sqrt(3.0) * abs(motion.approach_distance) / motion.approach_duration**2
+    if motion.pose is None:
+        return descent
+    everywhere = np.vstack([np.zeros((1, 3)), points])
+    posed = max(float(np.max(np.abs(motion.pose.point_motion(everywhere, t)[2][:, 2])))
+                for t in np.linspace(0.0, motion.end_time, samples))
+    return descent + posed
