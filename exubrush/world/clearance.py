@@ -6,10 +6,11 @@ sampling the motion, refined where a sample comes close, so that a violation is 
 missed by more than a stated margin:
 
 A function f(t) that changes at most ``rate`` per second has, between two samples a and
-b = a + h, no value below (f(a) + f(b)) / 2 - rate h / 2. :func:`first_below` starts
+b = a + h, no value below (f(a) + f(b)) / 2 - rate h / 2. :func:`lowest_below` starts
 with :data:`COARSE_SAMPLES` samples over the window and halves every interval whose lower
-bound is below -``margin``, until none is: f then never falls below -``margin`` unless a
-sample is below 0, and that sample is what is reported.
+bound is more than ``margin`` below min(0, the lowest sample), until none is: f then never
+falls below -``margin`` unless a sample is below 0, and where one is, f's true minimum is
+within ``margin`` of the lowest sample, which is what is reported.
 
 For the roots, f is the lowest root's height above the plane, z. A root's height changes
 at most at the rate of the descent's, the pose's z translation's and of the turn's:
@@ -43,32 +44,31 @@ class Unchecked(ValueError):
     """A check that would need more than :data:`MOST_SAMPLES` samples."""
 
 
-def first_below(f: Callable[[float], float], t0: float, t1: float, rate: float,
-                margin: float) -> tuple[float, float] | None:
-    """The time [s] and value of f's lowest sample below 0 on [t0, t1], or None.
+def lowest_below(f: Callable[[float], float], t0: float, t1: float, rate: float,
+                 margin: float) -> tuple[float, float] | None:
+    """The time [s] and value of f's lowest sample on [t0, t1] if it is below 0, else None.
 
     f changes at most ``rate`` per second; every excursion of f below -``margin`` is
-    found (see module docstring). Raises :class:`Unchecked` if that would take more than
-    :data:`MOST_SAMPLES` evaluations (f stays within ``margin`` of 0 over a long stretch).
+    found, and its lowest value is within ``margin`` of the one returned (see module
+    docstring). Raises :class:`Unchecked` if that would take more than
+    :data:`MOST_SAMPLES` evaluations (f stays within ``margin`` of its threshold over a
+    long stretch).
     """
     times = list(np.linspace(t0, t1, COARSE_SAMPLES)) if t1 > t0 else [t0]
     values = [f(t) for t in times]
     while True:
-        worst = int(np.argmin(values))
-        if values[worst] < 0.0:
-            return times[worst], values[worst]
+        threshold = min(0.0, min(values)) - margin
         refined_times, refined_values = [times[0]], [values[0]]
-        split = False
         for a, b, fa, fb in zip(times[:-1], times[1:], values[:-1], values[1:], strict=True):
-            if 0.5 * (fa + fb) - 0.5 * rate * (b - a) < -margin:
+            if 0.5 * (fa + fb) - 0.5 * rate * (b - a) < threshold:
                 middle = 0.5 * (a + b)
                 refined_times.append(middle)
                 refined_values.append(f(middle))
-                split = True
             refined_times.append(b)
             refined_values.append(fb)
-        if not split:
-            return None
+        if len(refined_times) == len(times):
+            worst = int(np.argmin(values))
+            return (times[worst], values[worst]) if values[worst] < 0.0 else None
         times, values = refined_times, refined_values
         if len(times) > MOST_SAMPLES:
             raise Unchecked(f"more than {MOST_SAMPLES:,} samples")
@@ -108,10 +108,13 @@ def lowest_root(motion: HeadMotion, direction: str, start_height: float, roots: 
                 height: Callable[[np.ndarray], np.ndarray] | None = None
                 ) -> tuple[float, float] | None:
     """The time [s] and depth [mm] at which the deepest sampled root is below the
-    surface, or None if none ever is (a root deeper than :data:`ROOT_MARGIN` under the
-    plane is never missed). ``height`` gives the surface's top under head-frame points
-    (n, 3) [mm]; None: the plane z = 0. A head without pose terms is not sampled: it only
-    descends to the interaction distance and slides along the surface."""
+    surface, or None if none ever is: a root deeper than :data:`ROOT_MARGIN` under the
+    plane is never missed, and the depth is within ROOT_MARGIN of the deepest.
+
+    ``height`` gives the surface's top under head-frame points (n, 3) [mm]; None: the
+    plane z = 0. A head without pose terms is not sampled: it only descends to the
+    interaction distance and slides along the surface.
+    """
     if motion.pose is None:
         return None
     t0, t1 = pose_window(motion)
@@ -121,18 +124,19 @@ def lowest_root(motion: HeadMotion, direction: str, start_height: float, roots: 
         top = 0.0 if height is None else height(where)
         return float(np.min(where[:, 2] - top))
 
-    found = first_below(clearance, t0, t1, vertical_rate(motion, roots, t0), ROOT_MARGIN)
+    found = lowest_below(clearance, t0, t1, vertical_rate(motion, roots, t0), ROOT_MARGIN)
     return None if found is None else (found[0], -found[1])
 
 
 def largest_tilt(motion: HeadMotion) -> tuple[float, float] | None:
     """The time [s] and |ry| [rad] of the sample where |ry| is largest beyond
     :data:`RY_LIMIT`, or None if it stays within it (an excursion beyond RY_LIMIT +
-    :data:`RY_MARGIN` is never missed)."""
+    :data:`RY_MARGIN` is never missed; the largest is within RY_MARGIN of the one
+    returned)."""
     if motion.pose is None or motion.pose.peak_rate[4] == 0.0:
         return None
     t0, t1 = pose_window(motion)
-    found = first_below(lambda t: RY_LIMIT - abs(motion.pose.evaluate(t)[0][4]), t0, t1,
+    found = lowest_below(lambda t: RY_LIMIT - abs(motion.pose.evaluate(t)[0][4]), t0, t1,
                         float(motion.pose.peak_rate[4]), RY_MARGIN)
     return None if found is None else (found[0], RY_LIMIT - found[1])
 
@@ -142,10 +146,10 @@ def peak_vertical_acceleration(motion: HeadMotion, points: np.ndarray,
     """The largest |z acceleration| [mm/s²] of the head's ``points`` (head frame at t = 0)
     and its origin: the descent's exactly (10/√3 D / T², the quintic step's largest
     curvature), the pose's sampled at ``samples`` times over the run (a jerk between two
-    samples can be missed: an allowance, not a bound)."""
+    samples can be missed: an allowance, not a bound) unless it has no z, rx or ry term."""
     descent = 10.0 / math.sqrt(3.0) * abs(motion.approach_distance) / motion.approach_duration**2
-    if motion.pose is None:
-        return descent
+    if motion.pose is None or not np.any(motion.pose.peak_rate[2:5] > 0.0):
+        return descent  # slides, shifts along the surface and turns about z: no z
     everywhere = np.vstack([np.zeros((1, 3)), points])
     posed = max(float(np.max(np.abs(motion.pose.point_motion(everywhere, t)[2][:, 2])))
                 for t in np.linspace(0.0, motion.end_time, samples))
