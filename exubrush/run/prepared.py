@@ -38,9 +38,9 @@ from exubrush.run.sanity import (
 from exubrush.world.clearance import (
     RY_LIMIT,
     Unchecked,
+    largest_acceleration,
     largest_tilt,
     lowest_root,
-    peak_vertical_acceleration,
 )
 from exubrush.world.kinematics import SLIDE_AXES
 from exubrush.world.mesh import MeshError, MeshSurface, read_mesh
@@ -115,9 +115,9 @@ class PreparedCase:
         Per group, the angle [rad] about the head's centre by which it lies turned from its
         stand-in (0: shifted along the plane, or its own).
     peak_acceleration : float
-        The largest vertical acceleration of the head's roots and origin over the run
-        [mm/s²] (exubrush.world.clearance.peak_vertical_acceleration): what the inertia
-        allowance of the force bound is taken at (exubrush.run.sanity).
+        The largest acceleration of the head's roots and origin over the run [mm/s²]
+        (exubrush.world.clearance.largest_acceleration): what the inertia allowance of the
+        force bound is taken at (exubrush.run.sanity).
     """
 
     case: Case
@@ -159,7 +159,7 @@ class PreparedCase:
         """What the drive's normal reaction [N] of the bristles ``selection`` (default: the
         whole head) on handles of ``handle_mass`` [t] in all may reach: their contact bound
         (:meth:`force_bound`) and the inertia allowance of the handles and bristles at the
-        head's largest vertical acceleration (exubrush.run.sanity.inertia_allowance)."""
+        head's largest acceleration (exubrush.run.sanity.inertia_allowance)."""
         chosen = self.bristles if selection is None else [self.bristles[i] for i in selection]
         return self.force_bound(selection) + inertia_allowance(
             handle_mass + bristle_mass(chosen), self.peak_acceleration)
@@ -213,13 +213,14 @@ def prepare(case: Case) -> PreparedCase:
     reaching = surface_reach(case, bristles, motion, mesh)
     groups = bristle_groups(case, bristles)
     sources, turns = stand_ins(case, bristles, groups, motion)
-    if not any(reaching):
+    if not any(reaching) and not case.motion.posed:
         s = case.surface
         raise ParameterError(
             f"surface: no bristle can reach the {s.kind} at x = {s.x:g} mm, y = {s.y:g} mm "
             f"over the whole slide at motion.interaction_distance = "
             f"{case.motion.interaction_distance:g} mm; place it under the head (surface.x, "
-            "surface.y) or lower the interaction distance")
+            "surface.y), lower the interaction distance, or add pose terms (motion.sine, "
+            "motion.pose_csv) for a head that moves in the air")
     return PreparedCase(
         case=case,
         bristles=bristles,
@@ -231,13 +232,13 @@ def prepare(case: Case) -> PreparedCase:
         groups=groups,
         work=work,
         inputs=input_digests(motion, mesh),
-        warnings=tuple(motion_warnings(case, motion)) + tuple(
-            unreachable_tufts(case, bristles, reaching)) + tuple(coupled_warning(case, groups)),
+        warnings=tuple(motion_warnings(case, motion)) + tuple(in_the_air(case, reaching))
+        + tuple(unreachable_tufts(case, bristles, reaching)) + tuple(coupled_warning(case, groups)),
         reaching=reaching,
         mesh=mesh,
         stand_ins=sources,
         stand_in_turns=turns,
-        peak_acceleration=peak_vertical_acceleration(
+        peak_acceleration=largest_acceleration(
             motion, np.array([b.root for b in bristles])),
     )
 
@@ -329,6 +330,17 @@ def surface_reach(case: Case, bristles, motion: HeadMotion, mesh: MeshSurface | 
             top = mesh.top_near_segment(ends[0, :2], ends[1, :2], reach)
         reaching.append(bool(distance - reach < top))
     return tuple(reaching)
+
+
+def in_the_air(case: Case, reaching: tuple[bool, ...]) -> list[str]:
+    """A warning for a head none of whose bristles can reach the surface (allowed only with
+    pose terms: exubrush.world.motion.start_height)."""
+    if any(reaching):
+        return []
+    return [f"surface: no bristle can reach the {case.surface.kind} at "
+            f"motion.interaction_distance = {case.motion.interaction_distance:g} mm: the head "
+            "moves in the air, without contact; its force and moment are the filaments' "
+            "inertia and bending (docs/motion.md, \"A head in the air\")"]
 
 
 def unreachable_tufts(case: Case, bristles, reaching: tuple[bool, ...]) -> list[str]:

@@ -11,7 +11,7 @@ force afterwards, but not from the reaction a solve checks as it goes) and the b
 mass carried along. A group whose bristles cannot reach the surface has a contact bound
 of 0 N and pushes with nothing but that inertia (2.6e-6 N on one filament's handle during
 the approach). :func:`inertia_allowance` adds INERTIA_FACTOR times the rigid m·a of the
-handle and the bristles at the head's largest vertical acceleration: the integration's
+handle and the bristles at the head's largest acceleration: the integration's
 error of the handle's m·a is a share of m·a itself (docs/motion.md: up to 94 % of a
 side force's RMS at 20 steps a cycle), and a free filament driven at its first bending
 resonance swings with an amplification of about 1/(2ζ) = 9 (ζ = ω τ/2 = 0.055 for a

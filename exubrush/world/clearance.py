@@ -141,16 +141,21 @@ def largest_tilt(motion: HeadMotion) -> tuple[float, float] | None:
     return None if found is None else (found[0], RY_LIMIT - found[1])
 
 
-def peak_vertical_acceleration(motion: HeadMotion, points: np.ndarray,
-                               samples: int = 2000) -> float:
-    """The largest |z acceleration| [mm/s²] of the head's ``points`` (head frame at t = 0)
+def largest_acceleration(motion: HeadMotion, points: np.ndarray, samples: int = 2000) -> float:
+    """The largest |acceleration| [mm/s²] of the head's ``points`` (head frame at t = 0)
     and its origin: the descent's exactly (10/√3 D / T², the quintic step's largest
-    curvature), the pose's sampled at ``samples`` times over the run (a jerk between two
-    samples can be missed: an allowance, not a bound) unless it has no z, rx or ry term."""
+    curvature) plus the slide's, and the pose's sampled at ``samples`` times over the run
+    (a jerk between two samples can be missed: an allowance, not a bound) at the corners of
+    the points' bounding box and the origin (a point's acceleration is affine in where it
+    sits on the head, so its size is largest at a corner of any box around the points)."""
     descent = 10.0 / math.sqrt(3.0) * abs(motion.approach_distance) / motion.approach_duration**2
-    if motion.pose is None or not np.any(motion.pose.peak_rate[2:5] > 0.0):
-        return descent  # slides, shifts along the surface and turns about z: no z
-    everywhere = np.vstack([np.zeros((1, 3)), points])
-    posed = max(float(np.max(np.abs(motion.pose.point_motion(everywhere, t)[2][:, 2])))
+    rigid = descent + motion.slide.peak_acceleration
+    if motion.pose is None:
+        return rigid
+    low, high = points.min(axis=0), points.max(axis=0)
+    corners = np.array([[(low, high)[k >> axis & 1][axis] for axis in range(3)]
+                        for k in range(8)])
+    everywhere = np.vstack([np.zeros((1, 3)), corners])
+    posed = max(float(np.max(np.linalg.norm(motion.pose.point_motion(everywhere, t)[2], axis=1)))
                 for t in np.linspace(0.0, motion.end_time, samples))
-    return descent + posed
+    return rigid + posed

@@ -4,8 +4,10 @@ a tuft that cannot reach beside one that can, and a head that swings in the air.
 import dataclasses
 import re
 
+import numpy as np
 import pytest
 
+from exubrush.parameters.fields import ParameterError
 from exubrush.parameters.io import load_case
 from exubrush.run.prepared import prepare
 from exubrush.simulation import simulate
@@ -68,3 +70,40 @@ def test_a_group_stopped_beyond_its_bound_is_reported_honestly(two_tufts):
     assert float(kept) < float(seen) <= float(kept) + interval + 1e-12
     assert meta["sanity"]["within_bound"] is False
     assert meta["sanity"]["groups_stopped_beyond_bound"] == [1]
+
+
+def _sonic_filament(*overrides):
+    """The sonic case's first tuft, one filament of it, 0.05 s of swing."""
+    case = load_case("sonic", ["motion.periods=0.0125", *overrides])
+    return case.replace(head=case.head.replace(
+        tufts=(case.head.tufts[0].replace(filaments=1),)))
+
+
+def test_a_sonic_head_lifted_clear_swings_in_the_air():
+    # the sonic filament reaches 10.4 + 0.1 mm below its root: at d = 11 mm it never
+    # touches (docs/motion.md, "A head in the air")
+    prepared = prepare(_sonic_filament("motion.interaction_distance='11 mm'"))
+    assert prepared.reaching == (False,)
+    assert any("moves in the air" in w for w in prepared.warnings)
+    # no approach: the head starts at d and stands still until the swing
+    assert prepared.start_height == 11.0
+    assert prepared.motion.approach_distance == 0.0
+    results = simulate(prepared, progress=False, workers=1)
+    meta = results.metadata
+    assert meta["status"] == "completed", meta["message"]
+    assert meta["sanity"]["within_bound"]
+    assert not results.tip_force.any()  # no contact element, no contact force
+    # the tip swings across the head (±1.5 mm) and more (the filament near resonance)
+    swing = results.time >= meta["derived"]["slide_start_s"]
+    tip_across = results.tip_position[swing, 0, 1]
+    assert np.ptp(tip_across) > 3.0
+
+
+@pytest.mark.parametrize("distance", [
+    "5.6 mm",  # beyond the reach (5 + 0.4 mm), within the clearance above it (0.3 mm)
+    "6 mm",  # beyond both: above the approach's start
+])
+def test_a_head_in_the_air_without_pose_terms_is_refused(distance):
+    with pytest.raises(ParameterError, match="add pose terms"):
+        prepare(load_case("orthogonal", ["head.rows=1", "head.columns=1",
+                                         f"motion.interaction_distance='{distance}'"]))
