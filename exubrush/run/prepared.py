@@ -38,6 +38,7 @@ from exubrush.run.sanity import (
 from exubrush.world.clearance import (
     RY_LIMIT,
     Unchecked,
+    closest_approach,
     largest_acceleration,
     largest_tilt,
     lowest_root,
@@ -210,7 +211,11 @@ def prepare(case: Case) -> PreparedCase:
             mesh = read_mesh(case.surface.mesh_file, case.surface.mesh_unit)
         except MeshError as err:
             raise ParameterError(str(err)) from None
-    reaching = surface_reach(case, bristles, motion, mesh)
+    closest = closest_approach(motion, case.motion.direction, height,
+                               np.array([b.root for b in bristles]),
+                               case.motion.interaction_distance
+                               ) if case.surface.kind == "plane" else None
+    reaching = surface_reach(case, bristles, motion, mesh, closest=closest)
     groups = bristle_groups(case, bristles)
     sources, turns = stand_ins(case, bristles, groups, motion)
     if not any(reaching) and not case.motion.posed:
@@ -228,7 +233,7 @@ def prepare(case: Case) -> PreparedCase:
         start_height=height,
         prb=prb_parameters(case) if case.model.kind == "prb" else None,
         friction_window=friction_window(case, motion),
-        force_limits=static_force_limits(case, bristles),
+        force_limits=static_force_limits(case, bristles, closest),
         groups=groups,
         work=work,
         inputs=input_digests(motion, mesh),
@@ -300,7 +305,7 @@ def input_digests(motion: HeadMotion, mesh: MeshSurface | None = None
 
 
 def surface_reach(case: Case, bristles, motion: HeadMotion, mesh: MeshSurface | None = None,
-                  samples: int = 400) -> tuple[bool, ...]:
+                  samples: int = 400, closest: float | None = None) -> tuple[bool, ...]:
     """Per bristle, whether its tip can touch the surface somewhere along the slide.
 
     A tip's lowest point reaches at most l + r below its root, which stands
@@ -308,9 +313,12 @@ def surface_reach(case: Case, bristles, motion: HeadMotion, mesh: MeshSurface | 
     of it; it can touch if the surface's top (exubrush.world.surfaces.highest_near) rises above
     that depth anywhere within that distance of the root, at any of ``samples`` slide
     positions (on a mesh: anywhere near the root's straight path, an upper bound). On the
-    plane this is d < l + r. A head with pose terms reaches everywhere (not sampled yet).
+    plane this is d < l + r, with d the roots' ``closest`` approach to it where pose terms
+    bring them lower than the interaction distance (exubrush.world.clearance.
+    closest_approach). On other surfaces a head with pose terms reaches everywhere (not
+    sampled yet).
     """
-    distance = case.motion.interaction_distance
+    distance = case.motion.interaction_distance if closest is None else closest
     if case.surface.kind == "plane":
         return tuple(can_reach(b, distance) for b in bristles)
     if motion.pose is not None:  # turned or shaken: every bristle may reach (an upper bound)

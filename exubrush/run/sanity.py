@@ -32,10 +32,12 @@ INERTIA_FACTOR = 10.0  # the inertia allowance over rigid m·a (see module docst
 BEYOND_BOUND = "exceeds the physical bound"
 
 
-def static_force_limits(case: Case, bristles: Sequence[BristleGeometry]) -> tuple[float, ...]:
+def static_force_limits(case: Case, bristles: Sequence[BristleGeometry],
+                        distance: float | None = None) -> tuple[float, ...]:
     """E·A·δ/l of each bristle [N]: its force straight and fully compressed (0 if it cannot
-    reach the surface)."""
-    d = case.motion.interaction_distance
+    reach the surface), δ = l + r - d with d the roots' ``distance`` from the surface at
+    their closest [mm] (default: motion.interaction_distance)."""
+    d = case.motion.interaction_distance if distance is None else distance
     return tuple(b.material.youngs_modulus * b.section.area * (b.length + b.tip_radius - d)
                  / b.length if can_reach(b, d) else 0.0 for b in bristles)
 

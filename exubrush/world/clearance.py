@@ -32,6 +32,10 @@ from exubrush.world.motion import HeadMotion
 COARSE_SAMPLES = 65  # first samples over a window, before refinement
 MOST_SAMPLES = 200_000  # a check needing more samples is refused (a head that grazes)
 ROOT_MARGIN = 0.01  # [mm]: a root deeper than this below the plane is never missed
+# [mm]: the roots' closest approach is taken this much below the lowest sample (a bristle
+# within it of reaching gets a contact element it may not need; a finer margin would
+# sample a head held at its lowest for long finely all along)
+REACH_MARGIN = 0.1
 # |ry| of the Tait-Bryan angles kept this far from 90° [rad]: the moment is recovered from
 # the drive through G⁻ᵀ, whose norm grows as 1 / cos ry (1/cos 80° = 5.8: the drive's
 # moment error amplified at most about six times; 89.9°: 573 times, and at 90° G is
@@ -41,23 +45,25 @@ RY_MARGIN = math.radians(0.1)  # [rad]: an excursion this far beyond RY_LIMIT is
 
 
 class Unchecked(ValueError):
-    """A check that would need more than :data:`MOST_SAMPLES` samples."""
+    """A check that would need more than :data:`MOST_SAMPLES` samples; ``lower`` is what
+    the samples taken so far guarantee: f stays at or above it."""
+
+    def __init__(self, message: str, lower: float):
+        super().__init__(message)
+        self.lower = lower
 
 
-def lowest_below(f: Callable[[float], float], t0: float, t1: float, rate: float,
-                 margin: float) -> tuple[float, float] | None:
-    """The time [s] and value of f's lowest sample on [t0, t1] if it is below 0, else None.
-
-    f changes at most ``rate`` per second; every excursion of f below -``margin`` is
-    found, and its lowest value is within ``margin`` of the one returned (see module
-    docstring). Raises :class:`Unchecked` if that would take more than
-    :data:`MOST_SAMPLES` evaluations (f stays within ``margin`` of its threshold over a
-    long stretch).
-    """
+def least(f: Callable[[float], float], t0: float, t1: float, rate: float, margin: float,
+          floor: float = math.inf) -> tuple[float, float]:
+    """The time [s] and value of f's lowest sample on [t0, t1], refined (see module
+    docstring) until f's true least is within ``margin`` below it, or known to stay above
+    ``floor`` - ``margin``. f changes at most ``rate`` per second. Raises
+    :class:`Unchecked` if that would take more than :data:`MOST_SAMPLES` evaluations (f
+    stays within ``margin`` of its least over a long stretch)."""
     times = list(np.linspace(t0, t1, COARSE_SAMPLES)) if t1 > t0 else [t0]
     values = [f(t) for t in times]
     while True:
-        threshold = min(0.0, min(values)) - margin
+        threshold = min(floor, min(values)) - margin
         refined_times, refined_values = [times[0]], [values[0]]
         for a, b, fa, fb in zip(times[:-1], times[1:], values[:-1], values[1:], strict=True):
             if 0.5 * (fa + fb) - 0.5 * rate * (b - a) < threshold:
@@ -68,10 +74,21 @@ def lowest_below(f: Callable[[float], float], t0: float, t1: float, rate: float,
             refined_values.append(fb)
         if len(refined_times) == len(times):
             worst = int(np.argmin(values))
-            return (times[worst], values[worst]) if values[worst] < 0.0 else None
+            return times[worst], values[worst]
         times, values = refined_times, refined_values
         if len(times) > MOST_SAMPLES:
-            raise Unchecked(f"more than {MOST_SAMPLES:,} samples")
+            t, v = np.array(times), np.array(values)
+            lower = float(np.min(0.5 * (v[:-1] + v[1:]) - 0.5 * rate * np.diff(t)))
+            raise Unchecked(f"more than {MOST_SAMPLES:,} samples", min(lower, v.min()))
+
+
+def lowest_below(f: Callable[[float], float], t0: float, t1: float, rate: float,
+                 margin: float) -> tuple[float, float] | None:
+    """The time [s] and value of f's lowest sample on [t0, t1] if it is below 0, else None:
+    every excursion of f below -``margin`` is found, and its lowest value is within
+    ``margin`` of the one returned (:func:`least` with a floor of 0)."""
+    when, value = least(f, t0, t1, rate, margin, floor=0.0)
+    return (when, value) if value < 0.0 else None
 
 
 def pose_window(motion: HeadMotion) -> tuple[float, float]:
@@ -104,6 +121,16 @@ def positions(motion: HeadMotion, direction: str, start_height: float, points: n
     return moved + slide + motion.descent(t)[0] * DOWN + np.array([0.0, 0.0, start_height])
 
 
+def _root_clearance(motion: HeadMotion, direction: str, start_height: float,
+                    roots: np.ndarray, height: Callable[[np.ndarray], np.ndarray] | None):
+    """f(t): the lowest root's height above the surface's top [mm] at t [s]."""
+    def clearance(t: float) -> float:
+        where = positions(motion, direction, start_height, roots, t)
+        top = 0.0 if height is None else height(where)
+        return float(np.min(where[:, 2] - top))
+    return clearance
+
+
 def lowest_root(motion: HeadMotion, direction: str, start_height: float, roots: np.ndarray,
                 height: Callable[[np.ndarray], np.ndarray] | None = None
                 ) -> tuple[float, float] | None:
@@ -118,14 +145,29 @@ def lowest_root(motion: HeadMotion, direction: str, start_height: float, roots: 
     if motion.pose is None:
         return None
     t0, t1 = pose_window(motion)
-
-    def clearance(t: float) -> float:
-        where = positions(motion, direction, start_height, roots, t)
-        top = 0.0 if height is None else height(where)
-        return float(np.min(where[:, 2] - top))
-
-    found = lowest_below(clearance, t0, t1, vertical_rate(motion, roots, t0), ROOT_MARGIN)
+    found = lowest_below(_root_clearance(motion, direction, start_height, roots, height),
+                         t0, t1, vertical_rate(motion, roots, t0), ROOT_MARGIN)
     return None if found is None else (found[0], -found[1])
+
+
+def closest_approach(motion: HeadMotion, direction: str, start_height: float,
+                     roots: np.ndarray, interaction_distance: float) -> float:
+    """How close to the plane the roots come [mm]: the interaction distance, or where pose
+    terms bring a root lower, REACH_MARGIN less than the lowest sample where they move up
+    and down (which is within
+    REACH_MARGIN of the true least: this is at or below it). What a bristle must reach
+    past to touch the plane, and how far it can be compressed."""
+    if motion.pose is None:
+        return interaction_distance
+    t0, t1 = pose_window(motion)
+    rate = vertical_rate(motion, roots, t0)
+    try:
+        _, lowest = least(_root_clearance(motion, direction, start_height, roots, None), t0,
+                          t1, rate, REACH_MARGIN)
+    except Unchecked as err:  # a long stretch at its least: what the samples guarantee
+        return min(interaction_distance, err.lower)
+    # roots that never change height (slides, shifts, turns about z) are where sampled
+    return min(interaction_distance, lowest - (REACH_MARGIN if rate > 0.0 else 0.0))
 
 
 def largest_tilt(motion: HeadMotion) -> tuple[float, float] | None:

@@ -9,7 +9,13 @@ import pytest
 from exubrush.parameters.fields import ParameterError
 from exubrush.parameters.io import load_case
 from exubrush.run.prepared import prepare
-from exubrush.world.clearance import COARSE_SAMPLES, ROOT_MARGIN, RY_MARGIN, lowest_below
+from exubrush.world.clearance import (
+    COARSE_SAMPLES,
+    REACH_MARGIN,
+    ROOT_MARGIN,
+    RY_MARGIN,
+    lowest_below,
+)
 
 SINE = """
 name = "posed"
@@ -110,3 +116,19 @@ def test_ry_near_the_singularity_is_refused(tmp_path, angle, refused):
     reached = float(re.search(r"ry reaches (\S+)° at", message).group(1))
     assert reached == pytest.approx(float(angle.split()[0]), abs=math.degrees(RY_MARGIN))
     assert "keep |ry| below 80°" in message
+
+
+def test_a_bristle_brought_within_reach_by_the_pose_gets_contact(tmp_path):
+    # the default bristle reaches l + r = 5 + 0.4 mm below its root: not from d = 6 mm,
+    # but the table lowers the head by 1 mm, to 5 mm
+    (tmp_path / "down.csv").write_text("time [s],z [mm]\n0,0\n0.2,-1\n")
+    text = ('name = "down"\n[head]\nrows = 1\ncolumns = 1\n[motion]\nprofile = "none"\n'
+            'interaction_distance = "6 mm"\npose_csv = "down.csv"\n')
+    prepared = _prepare(tmp_path, text)
+    assert prepared.reaching == (True,)
+    # E A δ / l with E = 7.5 MPa, A = 0.6 x 0.9 mm², δ = 5.4 - 5 mm at most 2 REACH_MARGIN
+    # more (the closest approach is taken REACH_MARGIN below a sample within REACH_MARGIN
+    # of the true one)
+    exact = 7.5 * 0.54 * 0.4 / 5.0
+    assert exact <= prepared.force_limits[0] <= exact + 7.5 * 0.54 * 2 * REACH_MARGIN / 5.0
+    assert not any("cannot reach" in w for w in prepared.warnings)
