@@ -42,6 +42,7 @@ from exubrush.world.clearance import (
     largest_acceleration,
     largest_tilt,
     lowest_root,
+    outermost,
 )
 from exubrush.world.kinematics import SLIDE_AXES
 from exubrush.world.mesh import MeshError, MeshSurface, read_mesh
@@ -212,7 +213,7 @@ def prepare(case: Case) -> PreparedCase:
         except MeshError as err:
             raise ParameterError(str(err)) from None
     closest = closest_approach(motion, case.motion.direction, height,
-                               np.array([b.root for b in bristles]),
+                               outermost(np.array([b.root for b in bristles])),
                                case.motion.interaction_distance
                                ) if case.surface.kind == "plane" else None
     reaching = surface_reach(case, bristles, motion, mesh, closest=closest)
@@ -256,8 +257,10 @@ def impossible_pose(case: Case, bristles, motion: HeadMotion, start_height: floa
     if motion.pose is None:
         return []
     problems = []
-    roots = np.array([b.root for b in bristles])
     surface = case.surface
+    roots = np.array([b.root for b in bristles])
+    if surface.kind == "plane":
+        roots = outermost(roots)
     height = None if surface.kind == "plane" else (
         lambda points: surface_height(surface, *to_surface_frame(surface, points)[:, :2].T))
     try:

@@ -116,9 +116,24 @@ def positions(motion: HeadMotion, direction: str, start_height: float, points: n
     """Positions (n, 3) [mm] at t [s] of ``points`` fixed to the head (head frame at t = 0,
     the roots' surface at z = 0), in the head frame fixed to the surface: the start
     height, the slide, the descent and the pose (exubrush.world.kinematics)."""
-    moved = points if motion.pose is None else motion.pose.point_motion(points, t)[0]
+    moved = points if motion.pose is None else motion.pose.point_position(points, t)
     slide = motion.sliding(t)[0] * SLIDE_AXES[direction]
     return moved + slide + motion.descent(t)[0] * DOWN + np.array([0.0, 0.0, start_height])
+
+
+def outermost(points: np.ndarray) -> np.ndarray:
+    """The vertices of the convex hull of ``points`` (n, 3) [mm] (all of them where they
+    span no hull): under any rigid motion the lowest of the points is one of these, so the
+    plane's checks need only them (the sonic head's 1,480 roots: 8)."""
+    if len(points) <= 8:
+        return points
+    from scipy.spatial import ConvexHull, QhullError  # 0.1 s of import: posed heads only
+
+    flat = np.ptp(points[:, 2]) == 0.0  # roots on one level: their hull in the plane
+    try:
+        return points[ConvexHull(points[:, :2] if flat else points).vertices]
+    except QhullError:  # on a line (or fewer than 4 points off one level)
+        return points
 
 
 def _root_clearance(motion: HeadMotion, direction: str, start_height: float,

@@ -338,6 +338,16 @@ class HeadPose:
             total += term.evaluate(t)
         return total[0], total[1], total[2]
 
+    def _arms(self, points0: np.ndarray, pose: np.ndarray) -> np.ndarray:
+        """A (p₀ - pivot) (n, 3) [mm] of points p₀ (n, 3) at the ``pose``'s angles."""
+        return (np.asarray(points0, dtype=float) - self.pivot) @ rotation_matrix(pose[3:]).T
+
+    def point_position(self, points0: np.ndarray, t: float) -> np.ndarray:
+        """Positions [mm] (n, 3) at time t [s] of points fixed to the head, given by their
+        positions (n, 3) at t = 0 in the surface frame: :meth:`point_motion`'s first part."""
+        pose = self.evaluate(t)[0]
+        return self.pivot + pose[:3] + self._arms(points0, pose)
+
     def point_motion(self, points0: np.ndarray,
                      t: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Positions [mm], velocities [mm/s] and accelerations [mm/s²] (n, 3) at time t [s]
@@ -348,7 +358,7 @@ class HeadPose:
         a = ü + α × r + ω × (ω × r).
         """
         pose, rate, acceleration = self.evaluate(t)
-        arm = (np.asarray(points0, dtype=float) - self.pivot) @ rotation_matrix(pose[3:]).T
+        arm = self._arms(points0, pose)
         omega = angular_velocity(pose[3:], rate[3:])
         alpha = angular_acceleration(pose[3:], rate[3:], acceleration[3:])
         return (
