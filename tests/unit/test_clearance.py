@@ -4,6 +4,7 @@ refused before solving (issue 48, section 2; exubrush.world.clearance)."""
 import math
 import re
 
+import numpy as np
 import pytest
 
 from exubrush.parameters.fields import ParameterError
@@ -15,7 +16,9 @@ from exubrush.world.clearance import (
     ROOT_MARGIN,
     RY_MARGIN,
     lowest_below,
+    outermost,
 )
+from exubrush.world.pose import rotation_matrix
 
 SINE = """
 name = "posed"
@@ -132,3 +135,38 @@ def test_a_bristle_brought_within_reach_by_the_pose_gets_contact(tmp_path):
     exact = 7.5 * 0.54 * 0.4 / 5.0
     assert exact <= prepared.force_limits[0] <= exact + 7.5 * 0.54 * 2 * REACH_MARGIN / 5.0
     assert not any("cannot reach" in w for w in prepared.warnings)
+
+
+@pytest.mark.parametrize("seed", range(20))
+def test_lowest_below_against_dense_sampling(seed):
+    # f = c + Σ a sin(ω t + φ): it changes at most Σ a ω per second. A dense grid of 2e5
+    # samples on [0, 1] misses its least by at most rate / 4e5 (< 0.004 here)
+    rng = np.random.default_rng(seed)
+    a, omega, phi = rng.uniform(0.1, 1.0, 4), rng.uniform(1.0, 300.0, 4), rng.uniform(0, 7, 4)
+    c = rng.uniform(-0.5, 1.0) * a.sum() + a.sum() * 0.5
+    rate, margin = float(a @ omega), 0.01
+    def f(t):
+        return c + float(a @ np.sin(omega * t + phi))
+    dense = np.linspace(0.0, 1.0, 200_001)
+    values = c + np.sin(np.outer(dense, omega) + phi) @ a
+    true_least = values.min() - rate / 4e5  # at or below f's least
+    found = lowest_below(f, 0.0, 1.0, rate, margin)
+    if values.min() < -margin:
+        assert found is not None
+    if found is not None:
+        assert found[1] < 0.0
+        assert f(found[0]) == found[1]
+        assert found[1] - margin <= values.min() + 1e-12
+        assert found[1] >= true_least - 1e-12
+    else:
+        assert values.min() >= -margin
+
+
+def test_the_lowest_root_is_a_hull_vertex():
+    rng = np.random.default_rng(1)
+    points = np.column_stack([rng.uniform(-10, 10, (300, 2)), np.zeros(300)])
+    for angles in rng.uniform(-1.5, 1.5, (50, 3)):
+        turned = points @ rotation_matrix(angles).T
+        hull = outermost(points) @ rotation_matrix(angles).T
+        assert hull[:, 2].min() == turned[:, 2].min()
+    assert len(outermost(points)) < len(points)
