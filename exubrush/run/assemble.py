@@ -204,9 +204,9 @@ def stop_message(case, solutions: Sequence[GroupSolution | None], interrupted: b
     reached = float(solution.time[-1]) if len(solution.time) else 0.0
     reason = solution.message or "the solver stopped before the end time"
     if BEYOND_BOUND in reason:
-        kept = (f"its last sample within the bound at t = {reached:.6g} s"
-                if len(solution.time) else "no sample within the bound")
-        return f"group {index} stopped ({kept}): {reason}"
+        kept = ("its last sample within the bound" if len(solution.time)
+                else "with no sample within the bound")
+        return f"group {index} stopped at t = {reached:.6g} s, {kept}: {reason}"
     return (f"group {index} stopped at t = {reached:.6g} s ({reason}); likely cause: no "
             f"converged step down to solver.minimum_step_size ({case.solver.minimum_step_size:g}"
             " s), e.g. a contact too stiff for the step or a violent snap-through; try a "

@@ -62,8 +62,8 @@ def test_a_group_stopped_beyond_its_bound_is_reported_honestly(two_tufts):
     bare = dataclasses.replace(two_tufts, peak_acceleration=two_tufts.peak_acceleration / 100)
     meta = simulate(bare, progress=False, workers=1).metadata
     assert meta["status"] == "failed"
-    kept, seen = re.search(r"its last sample within the bound at t = (\S+) s\): normal force "
-                           r"\S+ N at t = (\S+) s exceeds", meta["message"]).groups()
+    kept, seen = re.search(r"stopped at t = (\S+) s, its last sample within the bound: normal "
+                           r"force \S+ N at t = (\S+) s exceeds", meta["message"]).groups()
     # the sample named is the first one dropped: after the last kept, within one record
     # (the output interval) of it
     interval = two_tufts.case.output.interval
