@@ -203,7 +203,8 @@ def prepare(case: Case) -> PreparedCase:
         motion = with_pose(motion, case.motion)
     except ValueError as err:
         raise ParameterError(f"motion.pose_csv: {err}") from None
-    _refuse(impossible_pose(case, bristles, motion, height))
+    roots = np.array([b.root for b in bristles])
+    _refuse(impossible_pose(case, roots, motion, height))
     work = estimate(case, len(bristles), motion.end_time, motion.slide_start)
     _refuse(over_work(case, work) + unresolved(case, motion))
     mesh = None
@@ -212,8 +213,7 @@ def prepare(case: Case) -> PreparedCase:
             mesh = read_mesh(case.surface.mesh_file, case.surface.mesh_unit)
         except MeshError as err:
             raise ParameterError(str(err)) from None
-    closest = closest_approach(motion, case.motion.direction, height,
-                               outermost(np.array([b.root for b in bristles])),
+    closest = closest_approach(motion, case.motion.direction, height, outermost(roots),
                                case.motion.interaction_distance
                                ) if case.surface.kind == "plane" else None
     reaching = surface_reach(case, bristles, motion, mesh, closest=closest)
@@ -244,21 +244,20 @@ def prepare(case: Case) -> PreparedCase:
         mesh=mesh,
         stand_ins=sources,
         stand_in_turns=turns,
-        peak_acceleration=largest_acceleration(
-            motion, np.array([b.root for b in bristles])),
+        peak_acceleration=largest_acceleration(motion, roots),
     )
 
 
-def impossible_pose(case: Case, bristles, motion: HeadMotion, start_height: float) -> list[str]:
-    """What the pose terms ask that no head can do, each as one line: roots driven
-    through the surface, or |ry| within 10° of the Tait-Bryan angles' singularity
-    (exubrush.world.clearance: sampled so that neither is missed by more than its margin).
-    A mesh surface's roots are not checked (docs/motion.md)."""
+def impossible_pose(case: Case, roots: np.ndarray, motion: HeadMotion,
+                    start_height: float) -> list[str]:
+    """What the pose terms ask that no head can do, each as one line: ``roots`` (n, 3)
+    [mm, head frame] driven through the surface, or |ry| within 10° of the Tait-Bryan
+    angles' singularity (exubrush.world.clearance: sampled so that neither is missed by
+    more than its margin). A mesh surface's roots are not checked (docs/motion.md)."""
     if motion.pose is None:
         return []
     problems = []
     surface = case.surface
-    roots = np.array([b.root for b in bristles])
     if surface.kind == "plane":
         roots = outermost(roots)
     height = None if surface.kind == "plane" else (
