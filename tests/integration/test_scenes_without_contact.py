@@ -107,3 +107,34 @@ def test_a_head_in_the_air_without_pose_terms_is_refused(distance):
     with pytest.raises(ParameterError, match="add pose terms"):
         prepare(load_case("orthogonal", ["head.rows=1", "head.columns=1",
                                          f"motion.interaction_distance='{distance}'"]))
+
+
+TURNED = """
+name = "turned"
+[head]
+rows = 1
+columns = 1
+[motion]
+profile = "none"
+pivot = ["0 mm", "0 mm", "-30 mm"]
+[[motion.sine]]
+axis = "{axis}"
+angle = "{angle}"
+frequency = "2 Hz"
+ramp_cycles = 0
+"""
+
+
+@pytest.mark.parametrize("axis, angle, said", [
+    ("rx", "60 deg", "the pose drives the head's roots 10.8 mm through the plane at t = "),
+    ("ry", "85 deg", "motion: ry reaches 85° at t = "),
+])
+def test_an_impossible_pose_is_refused_in_one_line_before_anything_is_written(
+        tmp_path, cli_here, axis, angle, said):
+    (tmp_path / "turned.toml").write_text(TURNED.format(axis=axis, angle=angle))
+    done = cli_here("run", "turned.toml", "--periods", "0.02", "--quiet", "--out", "out",
+                    cwd=tmp_path)
+    assert done.returncode == 2
+    lines = done.stderr.strip().splitlines()
+    assert len(lines) == 1 and said in lines[0], done.stderr
+    assert not (tmp_path / "out").exists()
