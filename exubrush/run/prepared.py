@@ -117,9 +117,9 @@ class PreparedCase:
         Per group, the angle [rad] about the head's centre by which it lies turned from its
         stand-in (0: shifted along the plane, or its own).
     peak_acceleration : float
-        The largest acceleration of the head's roots and origin over the run [mm/s²]
-        (exubrush.world.clearance.largest_acceleration): what the inertia allowance of the
-        force bound is taken at (exubrush.run.sanity).
+        An upper bound of the acceleration of the head's roots and origin over the run
+        [mm/s²] (exubrush.world.clearance.largest_acceleration): what the inertia allowance
+        of the force bound is taken at (exubrush.run.sanity).
     """
 
     case: Case

@@ -198,21 +198,22 @@ def largest_tilt(motion: HeadMotion) -> tuple[float, float] | None:
     return None if found is None else (found[0], RY_LIMIT - found[1])
 
 
-def largest_acceleration(motion: HeadMotion, points: np.ndarray, samples: int = 2000) -> float:
-    """The largest |acceleration| [mm/s²] of the head's ``points`` (head frame at t = 0)
-    and its origin: the descent's exactly (10/√3 D / T², the quintic step's largest
-    curvature) plus the slide's, and the pose's sampled at ``samples`` times over the run
-    (a jerk between two samples can be missed: an allowance, not a bound) at the corners of
-    the points' bounding box and the origin (a point's acceleration is affine in where it
-    sits on the head, so its size is largest at a corner of any box around the points)."""
+def largest_acceleration(motion: HeadMotion, points: np.ndarray) -> float:
+    """Upper bound of the acceleration [mm/s²] of the head's ``points`` (head frame at
+    t = 0) and its origin over the run: the descent's largest (10/√3 D / T², the quintic
+    step's largest curvature), the slide's, and the pose's. A point at arm r from the pivot
+    accelerates by ü + α × r + ω × (ω × r), so at most |ü| + (|α| + |ω|²) |r|, with
+    |ω| <= Σ|θ̇| (G's columns are unit vectors) and |α| = |G θ̈ + Ġ θ̇| <= Σ|θ̈| + (Σ|θ̇|)²
+    (the twice-turned columns turn at most at Σ|θ̇|); each from the terms' peaks
+    (``HeadPose.peak_rate``, ``peak_acceleration``)."""
     descent = 10.0 / math.sqrt(3.0) * abs(motion.approach_distance) / motion.approach_duration**2
     rigid = descent + motion.slide.peak_acceleration
     if motion.pose is None:
         return rigid
-    low, high = points.min(axis=0), points.max(axis=0)
-    corners = np.array([[(low, high)[k >> axis & 1][axis] for axis in range(3)]
-                        for k in range(8)])
-    everywhere = np.vstack([np.zeros((1, 3)), corners])
-    posed = max(float(np.max(np.linalg.norm(motion.pose.point_motion(everywhere, t)[2], axis=1)))
-                for t in np.linspace(0.0, motion.end_time, samples))
-    return rigid + posed
+    pose = motion.pose
+    rates, accelerations = pose.peak_rate, pose.peak_acceleration
+    turn_rate = float(np.sum(rates[3:]))
+    arm = float(np.max(np.linalg.norm(np.vstack([np.zeros((1, 3)), points]) - pose.pivot,
+                                      axis=1)))
+    return (rigid + float(np.linalg.norm(accelerations[:3]))
+            + (float(np.sum(accelerations[3:])) + 2.0 * turn_rate**2) * arm)

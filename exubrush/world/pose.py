@@ -160,6 +160,19 @@ class SineTerm:
         )
         return peak
 
+    @property
+    def peak_acceleration(self) -> np.ndarray:
+        """Upper bound of |acceleration| per coordinate (6,) [mm/s², rad/s²]: of
+        e'' g + 2 e' g' + e g'' with |g| <= a, |g'| <= a 2π f, |g''| <= a (2π f)² and the
+        smooth step's largest slope 15/8 and curvature 10/√3 over ``ramp``; without a
+        ramp a (2π f)², reached at the sine's peaks."""
+        omega = 2.0 * math.pi * self.frequency
+        ramp = (2.0 * 15.0 / (8.0 * self.ramp) * omega + 10.0 / math.sqrt(3.0) / self.ramp**2
+                if self.ramp > 0.0 else 0.0)
+        peak = np.zeros(6)
+        peak[AXES.index(self.axis)] = self.amplitude * (omega**2 + ramp)
+        return peak
+
     def _envelope(self, t: float) -> tuple[float, float, float]:
         """e, e' [1/s] and e'' [1/s²] at t [s]: the rising step in the first half of the
         term, the falling one in the second (2 ramp <= end - start: they never overlap)."""
@@ -251,6 +264,15 @@ class TableTerm:
             peak[k] = slide.peak_speed
         return peak
 
+    @property
+    def peak_acceleration(self) -> np.ndarray:
+        """Largest |acceleration| per coordinate (6,) [mm/s², rad/s²], exact
+        (:attr:`TabulatedSlide.peak_acceleration`)."""
+        peak = np.zeros(6)
+        for k, slide in self._slides.items():
+            peak[k] = slide.peak_acceleration
+        return peak
+
     def evaluate(self, t: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Pose, rate and acceleration (6,) each at time t [s] (mm, rad; per s; per s²)."""
         values = np.zeros((3, 6))
@@ -330,6 +352,12 @@ class HeadPose:
         """Upper bound of |rate| per coordinate (6,) [mm/s, rad/s]: the sum of the terms'
         (exact for a single term whose own is)."""
         return sum((term.peak_rate for term in self.terms), np.zeros(6))
+
+    @property
+    def peak_acceleration(self) -> np.ndarray:
+        """Upper bound of |acceleration| per coordinate (6,) [mm/s², rad/s²]: the sum of
+        the terms'."""
+        return sum((term.peak_acceleration for term in self.terms), np.zeros(6))
 
     def evaluate(self, t: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Pose, rate and acceleration (6,) each at time t [s] (mm, rad; per s; per s²)."""

@@ -15,10 +15,12 @@ from exubrush.world.clearance import (
     REACH_MARGIN,
     ROOT_MARGIN,
     RY_MARGIN,
+    largest_acceleration,
     lowest_below,
     outermost,
 )
-from exubrush.world.pose import rotation_matrix
+from exubrush.world.motion import HeadMotion, RestingSlide
+from exubrush.world.pose import AXES, HeadPose, SineTerm, rotation_matrix
 
 SINE = """
 name = "posed"
@@ -170,3 +172,26 @@ def test_the_lowest_root_is_a_hull_vertex():
         hull = outermost(points) @ rotation_matrix(angles).T
         assert hull[:, 2].min() == turned[:, 2].min()
     assert len(outermost(points)) < len(points)
+
+
+@pytest.mark.parametrize("seed", range(10))
+def test_the_acceleration_bound_holds_along_random_poses(seed):
+    # sine terms on random axes, amplitudes, frequencies, phases and ramps: no sampled
+    # acceleration of the head's points beats the bound, and no term's beats its own
+    rng = np.random.default_rng(seed)
+    terms = []
+    for axis in rng.choice(AXES, 3):
+        size = rng.uniform(0.1, 2.0) if axis in "xyz" else rng.uniform(0.05, 0.5)
+        frequency = rng.uniform(1.0, 50.0)
+        terms.append(SineTerm(axis, size, frequency, rng.uniform(0, 7), rng.uniform(0, 0.2),
+                              ramp=rng.choice([0.0, rng.uniform(0.5, 2.0) / frequency])))
+    pose = HeadPose(terms, rng.uniform(-5, 5, 3))
+    motion = HeadMotion(1.0, 0.1, 0.0, RestingSlide(1.0), pose)
+    points = rng.uniform(-6, 6, (5, 3))
+    bound = largest_acceleration(motion, points)
+    everywhere = np.vstack([np.zeros((1, 3)), points])
+    for t in np.linspace(0.0, motion.end_time, 3001):
+        sampled = np.linalg.norm(pose.point_motion(everywhere, t)[2], axis=1).max()
+        assert sampled <= bound
+        for term in terms:
+            assert np.all(np.abs(term.evaluate(t)[2]) <= term.peak_acceleration + 1e-9)
