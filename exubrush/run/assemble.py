@@ -20,6 +20,7 @@ from exubrush.models.inertia import dfm_root_piece, prb_root_piece, root_piece_i
 from exubrush.output.results import HeadWrench, Results
 from exubrush.parameters.fields import to_plain
 from exubrush.run.prepared import PreparedCase
+from exubrush.run.sanity import BEYOND_BOUND
 from exubrush.run.solution import GroupSolution, SolverStatistics
 from exubrush.run.solution_files import head_coordinates
 from exubrush.run.twins import with_twins
@@ -126,7 +127,10 @@ def assemble_results(prepared: PreparedCase, solutions: Sequence[GroupSolution |
     if case.output.solution_file and n:
         shape_coordinates = head_coordinates([s.coordinates for s in solutions], order)
     peak = float(np.max(np.abs(force[:, 2]))) if n else 0.0
-    bound = prepared.force_bound()
+    bound = prepared.group_bound(None, sum(s.handle_mass for s in ran))
+    # groups stopped beyond their bound: their samples past it are dropped, so the peak
+    # above cannot show it
+    beyond = [i for i, s in enumerate(solutions) if s is not None and BEYOND_BOUND in s.message]
     metadata = {
         "case": case.name,
         "model": case.model.kind,
@@ -137,7 +141,8 @@ def assemble_results(prepared: PreparedCase, solutions: Sequence[GroupSolution |
         "references": run_references(case),
         "solver_statistics": _statistics(solved),
         "sanity": {"peak_normal_force_N": peak, "normal_force_bound_N": bound,
-                   "within_bound": peak <= bound},
+                   "within_bound": peak <= bound and not beyond,
+                   "groups_stopped_beyond_bound": beyond},
         "solver_wall_time_s_sum": sum(s.wall_time for s in solved),
         "wall_time_s": facts.wall_time,
         "simulated_time_s": float(t[-1]) if n else 0.0,
@@ -229,8 +234,10 @@ def stop_message(case, solutions: Sequence[GroupSolution | None], interrupted: b
     index, solution = min(failed, key=lambda item: len(item[1].time))
     reached = float(solution.time[-1]) if len(solution.time) else 0.0
     reason = solution.message or "the solver stopped before the end time"
-    if "physical bound" in reason:
-        return f"group {index} stopped at t = {reached:.6g} s: {reason}"
+    if BEYOND_BOUND in reason:
+        kept = ("its last sample within the bound" if len(solution.time)
+                else "with no sample within the bound")
+        return f"group {index} stopped at t = {reached:.6g} s, {kept}: {reason}"
     return (f"group {index} stopped at t = {reached:.6g} s ({reason}); likely cause: no "
             f"converged step down to solver.minimum_step_size ({case.solver.minimum_step_size:g}"
             " s), e.g. a contact too stiff for the step or a violent snap-through; try a "

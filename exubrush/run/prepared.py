@@ -29,11 +29,26 @@ from exubrush.run.budget import (
     over_work,
     unresolved,
 )
-from exubrush.run.sanity import normal_force_bound, static_force_limits
+from exubrush.run.sanity import (
+    bristle_mass,
+    inertia_allowance,
+    normal_force_bound,
+    static_force_limits,
+)
+from exubrush.world.clearance import (
+    RY_LIMIT,
+    Unchecked,
+    closest_approach,
+    largest_acceleration,
+    largest_tilt,
+    lowest_root,
+    outermost,
+)
 from exubrush.world.kinematics import SLIDE_AXES
 from exubrush.world.mesh import MeshError, MeshSurface, read_mesh
 from exubrush.world.motion import HeadMotion, TabulatedSlide, head_motion
 from exubrush.world.pose import with_pose
+from exubrush.world.surfaces import height as surface_height
 from exubrush.world.surfaces import highest_near, to_surface_frame
 
 # twins under a turning head: distances and frames compared to this many decimals [mm, -]
@@ -101,6 +116,10 @@ class PreparedCase:
     stand_in_turns : tuple of float
         Per group, the angle [rad] about the head's centre by which it lies turned from its
         stand-in (0: shifted along the plane, or its own).
+    peak_acceleration : float
+        An upper bound of the acceleration of the head's roots and origin over the run
+        [mm/s²] (exubrush.world.clearance.largest_acceleration): what the inertia allowance
+        of the force bound is taken at (exubrush.run.sanity).
     """
 
     case: Case
@@ -118,6 +137,7 @@ class PreparedCase:
     mesh: MeshSurface | None = None
     stand_ins: tuple[int, ...] = ()
     stand_in_turns: tuple[float, ...] = ()
+    peak_acceleration: float = 0.0
 
     @property
     def solved_groups(self) -> list[tuple[int, tuple[int, ...]]]:
@@ -136,6 +156,15 @@ class PreparedCase:
         limits = self.force_limits
         return normal_force_bound(limits if selection is None
                                   else [limits[i] for i in selection])
+
+    def group_bound(self, selection: tuple[int, ...] | None, handle_mass: float) -> float:
+        """What the drive's normal reaction [N] of the bristles ``selection`` (default: the
+        whole head) on handles of ``handle_mass`` [t] in all may reach: their contact bound
+        (:meth:`force_bound`) and the inertia allowance of the handles and bristles at the
+        head's largest acceleration (exubrush.run.sanity.inertia_allowance)."""
+        chosen = self.bristles if selection is None else [self.bristles[i] for i in selection]
+        return self.force_bound(selection) + inertia_allowance(
+            handle_mass + bristle_mass(chosen), self.peak_acceleration)
 
     def newton_force_tolerance(self, selection: tuple[int, ...]) -> float:
         """Residual [N] below which Newton accepts a step of the bristles ``selection``:
@@ -174,6 +203,8 @@ def prepare(case: Case) -> PreparedCase:
         motion = with_pose(motion, case.motion)
     except ValueError as err:
         raise ParameterError(f"motion.pose_csv: {err}") from None
+    roots = np.array([b.root for b in bristles])
+    _refuse(impossible_pose(case, roots, motion, height))
     work = estimate(case, len(bristles), motion.end_time, motion.slide_start)
     _refuse(over_work(case, work) + unresolved(case, motion))
     mesh = None
@@ -182,16 +213,20 @@ def prepare(case: Case) -> PreparedCase:
             mesh = read_mesh(case.surface.mesh_file, case.surface.mesh_unit)
         except MeshError as err:
             raise ParameterError(str(err)) from None
-    reaching = surface_reach(case, bristles, motion, mesh)
+    closest = closest_approach(motion, case.motion.direction, height, outermost(roots),
+                               case.motion.interaction_distance
+                               ) if case.surface.kind == "plane" else None
+    reaching = surface_reach(case, bristles, motion, mesh, closest=closest)
     groups = bristle_groups(case, bristles)
     sources, turns = stand_ins(case, bristles, groups, motion)
-    if not any(reaching):
+    if not any(reaching) and not case.motion.posed:
         s = case.surface
         raise ParameterError(
             f"surface: no bristle can reach the {s.kind} at x = {s.x:g} mm, y = {s.y:g} mm "
             f"over the whole slide at motion.interaction_distance = "
             f"{case.motion.interaction_distance:g} mm; place it under the head (surface.x, "
-            "surface.y) or lower the interaction distance")
+            "surface.y), lower the interaction distance, or add pose terms (motion.sine, "
+            "motion.pose_csv) for a head that moves in the air")
     return PreparedCase(
         case=case,
         bristles=bristles,
@@ -199,17 +234,58 @@ def prepare(case: Case) -> PreparedCase:
         start_height=height,
         prb=prb_parameters(case) if case.model.kind == "prb" else None,
         friction_window=friction_window(case, motion),
-        force_limits=static_force_limits(case, bristles),
+        force_limits=static_force_limits(case, bristles, closest),
         groups=groups,
         work=work,
         inputs=input_digests(motion, mesh),
-        warnings=tuple(motion_warnings(case, motion)) + tuple(
-            unreachable_tufts(case, bristles, reaching)) + tuple(coupled_warning(case, groups)),
+        warnings=tuple(motion_warnings(case, motion)) + tuple(in_the_air(case, reaching))
+        + tuple(unreachable_tufts(case, bristles, reaching)) + tuple(coupled_warning(case, groups)),
         reaching=reaching,
         mesh=mesh,
         stand_ins=sources,
         stand_in_turns=turns,
+        peak_acceleration=largest_acceleration(motion, roots),
     )
+
+
+def impossible_pose(case: Case, roots: np.ndarray, motion: HeadMotion,
+                    start_height: float) -> list[str]:
+    """What the pose terms ask that no head can do, each as one line: ``roots`` (n, 3)
+    [mm, head frame] driven through the surface, or |ry| within 10° of the Tait-Bryan
+    angles' singularity (exubrush.world.clearance: sampled so that neither is missed by
+    more than its margin). A mesh surface's roots are not checked (docs/motion.md)."""
+    if motion.pose is None:
+        return []
+    problems = []
+    surface = case.surface
+    if surface.kind == "plane":
+        roots = outermost(roots)
+    height = None if surface.kind == "plane" else (
+        lambda points: surface_height(surface, *to_surface_frame(surface, points)[:, :2].T))
+    try:
+        tilt = largest_tilt(motion)
+        crossing = None if surface.kind == "mesh" else lowest_root(
+            motion, case.motion.direction, start_height, roots, height)
+    except Unchecked as err:
+        return [f"motion: the pose keeps the head's roots within 0.01 mm of the {surface.kind}"
+                f" or ry within 0.1° of ±{math.degrees(RY_LIMIT):g}° so long that checking it"
+                f" would take {err}; move the head clear of it"]
+    if crossing is not None:
+        when, depth = crossing
+        problems.append(
+            f"motion: the pose drives the head's roots {depth:.3g} mm through the "
+            f"{surface.kind} at t = {when:.6g} s (the roots stand "
+            f"{case.motion.interaction_distance:g} mm above it after the approach); reduce "
+            "the pose's z or turn terms, move motion.pivot, or raise "
+            "motion.interaction_distance")
+    if tilt is not None:
+        when, angle = tilt
+        problems.append(
+            f"motion: ry reaches {math.degrees(angle):.4g}° at t = {when:.6g} s, within "
+            f"{90.0 - math.degrees(RY_LIMIT):g}° of the Tait-Bryan angles' singularity at "
+            f"±90° where the head's moment cannot be recovered from the drive; keep |ry| "
+            f"below {math.degrees(RY_LIMIT):g}°")
+    return problems
 
 
 def input_digests(motion: HeadMotion, mesh: MeshSurface | None = None
@@ -231,7 +307,7 @@ def input_digests(motion: HeadMotion, mesh: MeshSurface | None = None
 
 
 def surface_reach(case: Case, bristles, motion: HeadMotion, mesh: MeshSurface | None = None,
-                  samples: int = 400) -> tuple[bool, ...]:
+                  samples: int = 400, closest: float | None = None) -> tuple[bool, ...]:
     """Per bristle, whether its tip can touch the surface somewhere along the slide.
 
     A tip's lowest point reaches at most l + r below its root, which stands
@@ -239,9 +315,12 @@ def surface_reach(case: Case, bristles, motion: HeadMotion, mesh: MeshSurface | 
     of it; it can touch if the surface's top (exubrush.world.surfaces.highest_near) rises above
     that depth anywhere within that distance of the root, at any of ``samples`` slide
     positions (on a mesh: anywhere near the root's straight path, an upper bound). On the
-    plane this is d < l + r. A head with pose terms reaches everywhere (not sampled yet).
+    plane this is d < l + r, with d the roots' ``closest`` approach to it where pose terms
+    bring them lower than the interaction distance (exubrush.world.clearance.
+    closest_approach). On other surfaces a head with pose terms reaches everywhere (not
+    sampled yet).
     """
-    distance = case.motion.interaction_distance
+    distance = case.motion.interaction_distance if closest is None else closest
     if case.surface.kind == "plane":
         return tuple(can_reach(b, distance) for b in bristles)
     if motion.pose is not None:  # turned or shaken: every bristle may reach (an upper bound)
@@ -261,6 +340,17 @@ def surface_reach(case: Case, bristles, motion: HeadMotion, mesh: MeshSurface | 
             top = mesh.top_near_segment(ends[0, :2], ends[1, :2], reach)
         reaching.append(bool(distance - reach < top))
     return tuple(reaching)
+
+
+def in_the_air(case: Case, reaching: tuple[bool, ...]) -> list[str]:
+    """A warning for a head none of whose bristles can reach the surface (allowed only with
+    pose terms: exubrush.world.motion.start_height)."""
+    if any(reaching):
+        return []
+    return [f"surface: no bristle can reach the {case.surface.kind} at "
+            f"motion.interaction_distance = {case.motion.interaction_distance:g} mm: the head "
+            "moves in the air, without contact; its force and moment are the filaments' "
+            "inertia and bending (docs/motion.md, \"A head in the air\")"]
 
 
 def unreachable_tufts(case: Case, bristles, reaching: tuple[bool, ...]) -> list[str]:

@@ -122,7 +122,7 @@ def solve_once(prepared: PreparedCase, selection: tuple[int, ...],
         # at the force interval: interpolated onto the shape grid between the same records
         # as the node positions (on_output_grid), so both say the same
         record_coordinates(settings, coordinates_file, case.output.interval)
-    bound = prepared.force_bound(selection)
+    bound = prepared.group_bound(selection, scene.handle_mass)
     reported = [0.0]
     asked = [time.monotonic()]
     status = {"reason": ""}
@@ -202,8 +202,11 @@ def solve_once(prepared: PreparedCase, selection: tuple[int, ...],
     if not sane.all():  # never pass a diverged or unphysical sample on as data
         n = int(np.argmin(sane))
         completed = False
-        message = message or ("non-finite forces or positions" if not finite.all()
-                              else "normal force beyond the physical bound")
+        if message != INTERRUPTED:  # the first sample dropped, not the check that saw it
+            first = drive[0][n, 0]
+            message = (f"non-finite forces or positions at t = {first:.6g} s" if not finite[n]
+                       else beyond_bound_message(case.model.kind, first,
+                                                 abs(reaction[n, 2]), bound))
     recorded = drive[0][:n, 0]
     grid, reaction = on_output_grid(recorded, reaction[:n], case.output.interval)
     moment = np.column_stack([d[:n, 1] for d in turning]) if n else np.zeros((0, 3))

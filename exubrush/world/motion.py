@@ -70,6 +70,11 @@ class SineSlide:
         """Largest slide speed, 2π A / T [mm/s]."""
         return 2.0 * math.pi * self.amplitude / self.period
 
+    @property
+    def peak_acceleration(self) -> float:
+        """Largest slide acceleration, A (2π / T)² [mm/s²]."""
+        return self.amplitude * (2.0 * math.pi / self.period) ** 2
+
     def velocities(self, taus: np.ndarray) -> np.ndarray:
         """Velocity [mm/s] at each slide time τ [s] of ``taus`` (element-wise)."""
         omega = 2.0 * math.pi / self.period
@@ -173,6 +178,14 @@ class TabulatedSlide:
         return float(np.max(np.abs(speeds)))
 
     @property
+    def peak_acceleration(self) -> float:
+        """Largest |slide acceleration| [mm/s²], exact: on each interval the interpolant's
+        acceleration 6a x + 2b is linear, largest in size at one of its ends."""
+        a, b = self._spline.c[:2]
+        width = np.diff(self._spline.x)
+        return float(max(np.max(np.abs(2.0 * b)), np.max(np.abs(6.0 * a * width + 2.0 * b))))
+
+    @property
     def digest(self) -> str:
         """SHA-256 of the interpolant (sample times and polynomial coefficients): equal for
         equal profiles, whatever else the file holds (comments, other columns)."""
@@ -222,6 +235,7 @@ class RestingSlide:
 
     duration: float
     peak_speed = 0.0
+    peak_acceleration = 0.0
 
     def velocities(self, taus: np.ndarray) -> np.ndarray:
         """Zero velocity [mm/s] at each slide time of ``taus``."""
@@ -309,18 +323,25 @@ class HeadMotion:
 def start_height(case: Case, bristles: Sequence[BristleGeometry]) -> float:
     """Height of the roots' surface above the plane at t = 0 [mm].
 
-    Raises ValueError if the interaction distance is not below it, i.e. no bristle would
-    ever touch the surface.
+    The approach starts with the lowest tip ``motion.approach_clearance`` above the plane.
+    A head with pose terms (``case.motion.posed``) whose bristles cannot touch from the
+    interaction distance d moves in the air: it starts at d and the approach stands still.
+
+    Raises ValueError if the interaction distance is not below that start height, i.e. no
+    bristle would ever touch the surface, and no pose term moves the head.
     """
     m = case.motion
     height = m.approach_clearance - min(b.lowest_reach for b in bristles)
-    if height <= m.interaction_distance:
-        raise ValueError(
-            f"motion.interaction_distance ({m.interaction_distance:g} mm) is not below the "
-            f"start height of the roots ({height:g} mm): no bristle would touch; "
-            "reduce it below the bristle length plus tip radius"
-        )
-    return height
+    if height > m.interaction_distance:
+        return height
+    if m.posed:
+        return m.interaction_distance
+    raise ValueError(
+        f"motion.interaction_distance ({m.interaction_distance:g} mm) is not below the "
+        f"start height of the roots ({height:g} mm): no bristle would touch; "
+        "reduce it below the bristle length plus tip radius, or add pose terms "
+        "(motion.sine, motion.pose_csv) for a head that moves in the air"
+    )
 
 
 def head_motion(case: Case, bristles: Sequence[BristleGeometry]) -> tuple[HeadMotion, float]:

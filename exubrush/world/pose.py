@@ -160,6 +160,19 @@ class SineTerm:
         )
         return peak
 
+    @property
+    def peak_acceleration(self) -> np.ndarray:
+        """Upper bound of |acceleration| per coordinate (6,) [mm/s², rad/s²]: of
+        e'' g + 2 e' g' + e g'' with |g| <= a, |g'| <= a 2π f, |g''| <= a (2π f)² and the
+        smooth step's largest slope 15/8 and curvature 10/√3 over ``ramp``; without a
+        ramp a (2π f)², reached at the sine's peaks."""
+        omega = 2.0 * math.pi * self.frequency
+        ramp = (2.0 * 15.0 / (8.0 * self.ramp) * omega + 10.0 / math.sqrt(3.0) / self.ramp**2
+                if self.ramp > 0.0 else 0.0)
+        peak = np.zeros(6)
+        peak[AXES.index(self.axis)] = self.amplitude * (omega**2 + ramp)
+        return peak
+
     def _envelope(self, t: float) -> tuple[float, float, float]:
         """e, e' [1/s] and e'' [1/s²] at t [s]: the rising step in the first half of the
         term, the falling one in the second (2 ramp <= end - start: they never overlap)."""
@@ -252,6 +265,15 @@ class TableTerm:
             peak[k] = slide.peak_speed
         return peak
 
+    @property
+    def peak_acceleration(self) -> np.ndarray:
+        """Largest |acceleration| per coordinate (6,) [mm/s², rad/s²], exact
+        (:attr:`TabulatedSlide.peak_acceleration`)."""
+        peak = np.zeros(6)
+        for k, slide in self._slides.items():
+            peak[k] = slide.peak_acceleration
+        return peak
+
     def evaluate(self, t: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Pose, rate and acceleration (6,) each at time t [s] (mm, rad; per s; per s²)."""
         values = np.zeros((3, 6))
@@ -332,12 +354,28 @@ class HeadPose:
         (exact for a single term whose own is)."""
         return sum((term.peak_rate for term in self.terms), np.zeros(6))
 
+    @property
+    def peak_acceleration(self) -> np.ndarray:
+        """Upper bound of |acceleration| per coordinate (6,) [mm/s², rad/s²]: the sum of
+        the terms'."""
+        return sum((term.peak_acceleration for term in self.terms), np.zeros(6))
+
     def evaluate(self, t: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Pose, rate and acceleration (6,) each at time t [s] (mm, rad; per s; per s²)."""
         total = np.zeros((3, 6))
         for term in self.terms:
             total += term.evaluate(t)
         return total[0], total[1], total[2]
+
+    def _arms(self, points0: np.ndarray, pose: np.ndarray) -> np.ndarray:
+        """A (p₀ - pivot) (n, 3) [mm] of points p₀ (n, 3) at the ``pose``'s angles."""
+        return (np.asarray(points0, dtype=float) - self.pivot) @ rotation_matrix(pose[3:]).T
+
+    def point_position(self, points0: np.ndarray, t: float) -> np.ndarray:
+        """Positions [mm] (n, 3) at time t [s] of points fixed to the head, given by their
+        positions (n, 3) at t = 0 in the surface frame: :meth:`point_motion`'s first part."""
+        pose = self.evaluate(t)[0]
+        return self.pivot + pose[:3] + self._arms(points0, pose)
 
     def point_motion(self, points0: np.ndarray,
                      t: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -349,7 +387,7 @@ class HeadPose:
         a = ü + α × r + ω × (ω × r).
         """
         pose, rate, acceleration = self.evaluate(t)
-        arm = (np.asarray(points0, dtype=float) - self.pivot) @ rotation_matrix(pose[3:]).T
+        arm = self._arms(points0, pose)
         omega = angular_velocity(pose[3:], rate[3:])
         alpha = angular_acceleration(pose[3:], rate[3:], acceleration[3:])
         return (

@@ -86,6 +86,16 @@ def test_peak_slide_speed_of_a_sine_and_of_its_samples():
     assert sampled.peak_speed == pytest.approx(sine.peak_speed, rel=1e-2)
 
 
+def test_peak_slide_acceleration_of_a_sine_and_of_a_ramp():
+    assert SineSlide(15.0, 12.0, 1.0).peak_acceleration == pytest.approx(
+        15 * (2 * math.pi / 12) ** 2, rel=1e-14)
+    # the ramp above: the cubic -4s³ + 8s² leaving the rest at t = 1 s has the acceleration
+    # -24s + 16: 16 mm/s² as it leaves, the largest (the other stretches mirror it)
+    times = np.array([0.0, 1.0, 2.0, 3.0, 4.0, 5.0])
+    ramp = TabulatedSlide(times, np.array([0.0, 0.0, 4.0, 8.0, 12.0, 12.0]))
+    assert ramp.peak_acceleration == pytest.approx(16.0, rel=1e-12)
+
+
 def test_the_head_slides_faster_than_a_speed_only_in_the_middle_of_a_stroke():
     motion = HeadMotion(1.5, 1.0, 0.2, SineSlide(15.0, 12.0, 2.0))
     start, half = motion.slide_start, 0.5 * motion.slide.peak_speed

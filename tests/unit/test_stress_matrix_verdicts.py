@@ -57,3 +57,25 @@ def test_run_cell_judges_the_process_it_ran(tmp_path, monkeypatch):
     monkeypatch.setattr(stress_matrix.subprocess, "run", killed)
     row = stress_matrix.run_cell(stress_matrix.Cell("default", ()), tmp_path, limit=10.0)
     assert (row["outcome"], row["verdict"], row["exit"]) == ("killed", "FAIL", -9)
+
+
+def _run_json(tmp_path, peak, within, message):
+    (tmp_path / "run.json").write_text(json.dumps({
+        "status": "failed", "simulated_time_s": 0.03, "solver_statistics": {},
+        "message": message,
+        "sanity": {"peak_normal_force_N": peak, "normal_force_bound_N": 1.0,
+                   "within_bound": within, "groups_stopped_beyond_bound": [0]}}))
+
+
+def test_a_clear_stop_at_the_bound_passes(tmp_path):
+    # run.json's sanity says within_bound false for a group stopped at its bound (issue 48):
+    # its kept samples are within it, and the stop says when
+    _run_json(tmp_path, 0.5, False, "group 0 stopped at t = 0.03 s, its last sample within "
+              "the bound: normal force 3 N at t = 0.04 s exceeds the physical bound 1 N")
+    assert _verdict(tmp_path, 1, "exubrush: failed: ...\n")["verdict"] == "pass"
+
+
+def test_kept_samples_beyond_the_bound_fail(tmp_path):
+    _run_json(tmp_path, 1.5, False, "group 0 stopped at t = 0.03 s, its last sample within "
+              "the bound: ...")
+    assert _verdict(tmp_path, 1, "exubrush: failed: ...\n")["verdict"] == "FAIL"
