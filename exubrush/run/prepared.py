@@ -203,10 +203,11 @@ def prepare(case: Case) -> PreparedCase:
         motion = with_pose(motion, case.motion)
     except ValueError as err:
         raise ParameterError(f"motion.pose_csv: {err}") from None
-    roots = np.array([b.root for b in bristles])
-    _refuse(impossible_pose(case, roots, motion, height))
     work = estimate(case, len(bristles), motion.end_time, motion.slide_start)
     _refuse(over_work(case, work) + unresolved(case, motion))
+    # after the work is bounded: the pose's check evaluates every term at every sample
+    roots = np.array([b.root for b in bristles])
+    _refuse(impossible_pose(case, roots, motion, height))
     mesh = None
     if case.surface.kind == "mesh":
         try:

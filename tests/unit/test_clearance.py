@@ -94,7 +94,7 @@ def test_a_pose_table_lowering_the_head_is_refused_with_its_depth(tmp_path):
 
 
 def test_a_head_lowered_onto_a_sphere_is_refused(tmp_path):
-    (tmp_path / "down.csv").write_text("time [s],z [mm]\n0,0\n0.1,-6\n")
+    (tmp_path / "down.csv").write_text("time [s],z [mm]\n0,0\n0.2,-6\n")
     text = ('name = "down"\n[head]\nrows = 1\ncolumns = 1\n[surface]\nkind = "sphere"\n'
             '[motion]\nprofile = "none"\npose_csv = "down.csv"\n')
     message = _refusal(tmp_path, text)
