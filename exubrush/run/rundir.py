@@ -32,10 +32,12 @@ import numpy as np
 from exubrush.output.results import RESULT_FILES as SAVED_FILES
 from exubrush.parameters.fields import to_plain
 from exubrush.run.prepared import PreparedCase
+from exubrush.run.sanity import within_bound
 from exubrush.run.solution import GroupSolution
 from exubrush.run.solution_files import SOLUTION_FILE
 from exubrush.util.files import DamagedFile, atomic_file, read_npz
 from exubrush.util.provenance import code_identity
+from exubrush.util.tables import check_time_axis
 
 CHECKPOINT = ".checkpoint"
 CODE_FILE = "code.json"  # the exubrush version and commit that wrote the checkpoint
@@ -138,6 +140,7 @@ class RunDirectory:
         self.checkpoint = self.path / CHECKPOINT
         self.fingerprint = case_fingerprint(prepared)
         self.group_sizes = [len(group) for group in prepared.groups]
+        self.bounds = [prepared.force_bound(group) for group in prepared.groups]
         self.output = prepared.case.output
         self.code = code_identity()
         self.resumed = 0
@@ -261,7 +264,28 @@ class RunDirectory:
                 and solution.tip_force.shape == (steps, bristles, 3)):
             raise GroupFileError(f"{str(file)!r}: its arrays do not fit {steps} times of "
                                  f"{bristles} bristles: the file is of another run")
+        self._check_sane(file, solution)
         return solution
+
+    def _check_sane(self, file: Path, solution: GroupSolution) -> None:
+        """The checks a fresh solve passes before its group is kept (exubrush.run.solve):
+        it reached the end, at strictly increasing times, and its normal force stays
+        within the group's physical bound (finiteness: files.read_npz)."""
+        bound = self.bounds[self._group_index(file)]
+        if not solution.completed:
+            raise GroupFileError(f"{str(file)!r}: says its solve did not finish; exubrush "
+                                 "keeps finished groups only")
+        try:
+            check_time_axis(solution.time)
+        except ValueError as err:
+            raise GroupFileError(f"{str(file)!r}: its {err}") from None
+        sane = within_bound(solution.reaction, bound)
+        if not sane.all():
+            k = int(np.argmin(sane))
+            raise GroupFileError(f"{str(file)!r}: its normal force "
+                                 f"{abs(solution.reaction[k, 2]):.4g} N at t = "
+                                 f"{solution.time[k]:.6g} s exceeds the group's physical bound "
+                                 f"{bound:.4g} N, which a solve never keeps")
 
     def keep(self, index: int, solution: GroupSolution) -> None:
         """Store a finished group atomically (temporary file, then rename)."""

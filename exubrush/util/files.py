@@ -74,13 +74,15 @@ def read_npz(path: str | Path, required: Mapping[str, int | None],
 
     ``required`` and ``optional`` map each array's name to its number of dimensions, or to
     None for an array of any shape and type; an array with a number of dimensions must
-    hold numbers (or booleans). Pickled objects are never loaded.
+    hold finite real numbers (integers or floats: exubrush writes no boolean, complex,
+    infinite or NaN value in such an array, and numpy would cast the first two without a
+    word). Pickled objects are never loaded.
 
     Raises
     ------
     DamagedFile
         Naming the file and what is wrong: not an .npz archive, truncated or corrupted, an
-        array missing or of the wrong kind.
+        array missing, of the wrong kind, or holding a value that is not finite.
     """
     path = Path(path)
     name = repr(str(path))
@@ -104,8 +106,11 @@ def read_npz(path: str | Path, required: Mapping[str, int | None],
         dimensions = {**optional, **required}[key]
         if dimensions is None:
             continue
-        numeric = np.issubdtype(array.dtype, np.number) or array.dtype == bool
-        if array.ndim != dimensions or not numeric:
+        real = array.dtype.kind in "iuf"  # integer, unsigned or floating point
+        if array.ndim != dimensions or not real:
             raise DamagedFile(f"{name}: array {key!r} is {array.ndim}-dimensional "
-                              f"{array.dtype}, not {dimensions}-dimensional numbers")
+                              f"{array.dtype}, not {dimensions}-dimensional real numbers")
+        if not np.all(np.isfinite(array)):
+            raise DamagedFile(f"{name}: array {key!r} holds a value that is not finite "
+                              "(NaN or infinite), which exubrush never writes")
     return arrays

@@ -154,6 +154,51 @@ def test_a_damaged_checkpoint_is_named_in_one_line_with_exit_2(solved, tmp_path,
     assert not (run / "run.json").exists()
 
 
+def _rewritten(path, change):
+    """The .npz file ``path`` written again with its arrays as ``change(arrays)`` makes them
+    (a file whose zip and headers are whole, only its values poisoned)."""
+    with np.load(path) as archive:
+        arrays = {name: archive[name] for name in archive.files}
+    change(arrays)
+    with open(path, "wb") as handle:
+        np.savez(handle, **arrays)
+
+
+def _scalars(arrays, **values):
+    arrays["scalars"] = np.array(json.dumps({**json.loads(str(arrays["scalars"])), **values}))
+
+
+def _set(name, value):
+    def change(arrays):
+        arrays[name] = value(arrays[name]) if callable(value) else arrays[name] * 0 + value
+    return change
+
+
+POISONS = {  # what a fresh solve never keeps, each refused on resume
+    "NaN reaction": _set("reaction", np.nan),
+    "infinite tip": _set("tips", np.inf),
+    "NaN coordinate": _set("coordinates", np.nan),
+    "force beyond the bound": _set("reaction", 1e3),  # the bound of two bristles: ~2 N
+    "complex nodes": _set("nodes", lambda a: a.astype(complex)),
+    "boolean tip forces": _set("tip_force", lambda a: a != 0),
+    "not finished": lambda arrays: _scalars(arrays, completed=False),
+    "times backwards": _set("time", lambda a: a[::-1].copy()),
+}
+
+
+@pytest.mark.parametrize("poison", POISONS)
+def test_a_checkpoint_group_a_fresh_solve_would_not_keep_is_refused(solved, tmp_path, poison):
+    """A group file read back passes the checks a fresh solve's group passes before it is
+    kept (finite, finished, within the physical bound); else the run stops before solving
+    anything and names the file (deleting it solves that group again)."""
+    run = _copy(solved, tmp_path, "resumable")
+    group = run / ".checkpoint" / "group-00001.npz"
+    _rewritten(group, POISONS[poison])
+    message = _refused([*RUN, "--out", run], str(group))
+    assert "delete that file to solve its bristle group again" in message
+    assert not (run / "run.json").exists()
+
+
 def test_a_run_over_results_with_a_damaged_run_json_names_it(solved, tmp_path):
     run = _copy(solved, tmp_path)
     DAMAGES["not JSON"](run / "run.json")
