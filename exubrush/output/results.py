@@ -286,21 +286,17 @@ class ResultsError(ValueError):
 REMAKE = "; the result directory is damaged: make the run again (exubrush run with --overwrite)"
 
 
-def _kept_coordinates(metadata: dict) -> bool:
-    """Whether the run record says its run kept every node's coordinates."""
-    output = metadata.get("parameters", {})
-    output = output.get("output", {}) if isinstance(output, dict) else {}
-    return isinstance(output, dict) and output.get("solution_file") is True
-
-
 def read_results(directory: str | Path) -> Results:
     """Read a result directory written by :meth:`Results.save` (forces, shapes, run.json).
+
+    Every array read is checked against what run.json says the run was (:func:`_checked`)
+    before anything else is done with it.
 
     Raises
     ------
     ResultsError
-        If the directory or one of its files is missing or unreadable; the message says
-        which and how the directory is made.
+        If the directory or one of its files is missing, unreadable or does not fit the run
+        (one line naming the file and saying how the directory is made).
     """
     from exubrush.util.tables import read_unit_table
 
@@ -334,30 +330,84 @@ def read_results(directory: str | Path) -> Results:
         raise ResultsError(f"{err}{REMAKE}") from None
     if shapes is None:
         shapes = {"time": np.zeros(0), "nodes": np.zeros((0, 0, 0, 3))}
-    elif "coordinates" not in shapes and _kept_coordinates(metadata):
-        raise ResultsError(f"{str(directory / 'shapes.npz')!r} lacks the node coordinates "
-                           f"its run kept (output.solution_file){REMAKE}")
-    nodes = shapes["nodes"]
-    if nodes.shape[0] != shapes["time"].size or nodes.shape[3] != 3:
-        raise ResultsError(f"{str(directory / 'shapes.npz')!r}: its nodes {nodes.shape} do not "
-                           f"fit {shapes['time'].size} times of 3 coordinates: the file is "
-                           "damaged or of another exubrush version")
-    steps = series["time"].size
-    if tips is not None and not (tips["position"].shape == tips["force"].shape
-                                 and tips["force"].shape[::2] == (steps, 3)):
-        raise ResultsError(f"{str(directory / 'tips.npz')!r}: its arrays "
-                           f"{tips['position'].shape} and {tips['force'].shape} do not fit "
-                           f"{steps} times of forces.csv: the file is damaged or of "
-                           "another run")
     wrench = HeadWrench.from_columns(series)
     for name, _ in WRENCH_COLUMNS:  # some but not all of them: not exubrush's file
         if series.pop(name, None) is not None:
             raise ResultsError(f"{str(directory / 'forces.csv')!r} has some of the head's "
                                f"force and moment columns but not all{REMAKE}")
-    return Results(**series, wrench=wrench, shape_time=shapes["time"], shape_nodes=nodes,
-                   shape_coordinates=shapes.get("coordinates"),
-                   tip_position=None if tips is None else tips["position"],
-                   tip_force=None if tips is None else tips["force"], metadata=metadata)
+    return _checked(Results(**series, wrench=wrench, shape_time=shapes["time"],
+                            shape_nodes=shapes["nodes"],
+                            shape_coordinates=shapes.get("coordinates"),
+                            tip_position=None if tips is None else tips["position"],
+                            tip_force=None if tips is None else tips["force"],
+                            metadata=metadata), directory)
+
+
+def _checked(results: Results, directory: Path) -> Results:
+    """``results`` if every array read fits what run.json says the run was, else
+    ResultsError naming the file: forces.csv finite at strictly increasing times; shapes.npz
+    with the shape samples of those times (output.shape_interval), the head's bristles and
+    the model's nodes at increasing times, and, where the run kept them
+    (output.solution_file), a row of node coordinates per shape sample; tips.npz with every
+    time and bristle. (Finite real values in the .npz files: files.read_npz.) The sizes are
+    compared before any work that grows with them: a run.json may claim any head. Results
+    saved from Python without parameters claim no run: only their files are compared."""
+    from exubrush.util.tables import check_time_axis
+
+    steps, wrench = results.time.size, results.wrench
+    try:
+        check_time_axis(results.time, *(getattr(results, name) for name in _SERIES),
+                        *(() if wrench is None else (wrench.force, wrench.moment,
+                                                     wrench.head_force, wrench.head_moment)))
+    except ValueError as err:
+        raise ResultsError(f"{str(directory / 'forces.csv')!r}: {err}{REMAKE}") from None
+    bristles = points = samples = kept = None  # claimed by run.json (None: not claimed)
+    if "parameters" in results.metadata:
+        try:
+            case = results.case()
+        except ResultsError as err:
+            raise ResultsError(f"{str(directory / 'run.json')!r}: {err}") from None
+        bristles, points = case.head.count, case.model.shape_nodes + 1
+        samples, kept = case.output.shape_samples(steps), case.output.solution_file
+    shapes = directory / "shapes.npz"
+    if shapes.is_file():
+        nodes, times = results.shape_nodes, results.shape_time
+        if not _fits(nodes.shape, (None, bristles, points, 3)):
+            raise ResultsError(f"{str(shapes)!r}: holds nodes {nodes.shape}, but its run "
+                               f"(run.json) has {bristles} bristles of {points} nodes{REMAKE}")
+        if not _fits((times.size, len(nodes)), (samples or len(nodes),) * 2):
+            raise ResultsError(f"{str(shapes)!r}: holds {times.size} times and {len(nodes)} "
+                               f"shapes, but the {steps} times of forces.csv make {samples} "
+                               f"shape samples (output.shape_interval){REMAKE}")
+        coordinates = results.shape_coordinates
+        if coordinates is None and kept:
+            raise ResultsError(f"{str(shapes)!r} lacks the node coordinates its run kept "
+                               f"(output.solution_file){REMAKE}")
+        if coordinates is not None and not (len(coordinates) == times.size
+                                            and coordinates.shape[1] >= 2):
+            raise ResultsError(f"{str(shapes)!r}: its node coordinates {coordinates.shape} are "
+                               f"not a row (time, coordinates) for each of its {times.size} "
+                               f"times{REMAKE}")
+        try:
+            check_time_axis(times)
+            if coordinates is not None:
+                check_time_axis(coordinates[:, 0])
+        except ValueError as err:
+            raise ResultsError(f"{str(shapes)!r}: {err}{REMAKE}") from None
+    tips, forces = results.tip_position, results.tip_force
+    if tips is not None and not (tips.shape == forces.shape
+                                 and _fits(tips.shape, (steps, bristles, 3))):
+        raise ResultsError(f"{str(directory / 'tips.npz')!r}: its arrays {tips.shape} and "
+                           f"{forces.shape} do not fit the {steps} times of forces.csv and "
+                           f"the run's {bristles} bristles: the file is damaged or of "
+                           "another run")
+    return results
+
+
+def _fits(shape: tuple, expected: tuple) -> bool:
+    """Whether ``shape`` is ``expected``, whose None entries fit any size."""
+    return len(shape) == len(expected) and all(
+        e is None or s == e for s, e in zip(shape, expected, strict=True))
 
 
 def _read_arrays(path: Path, required, optional=None) -> dict[str, np.ndarray] | None:

@@ -425,6 +425,12 @@ class Model(Parameters):
             return self.rotation
         return "rotation-vector" if self.kind == "prb" else "euler-parameters"
 
+    @property
+    def shape_nodes(self) -> int:
+        """Nodes of a bristle the solve stores in its shapes, the root not counted: the
+        DFM's ``segments`` body ends, the PRB link's tip [-]."""
+        return self.segments if self.kind == "dfm" else 1
+
 
 POSE_AXES = ("x", "y", "z", "rx", "ry", "rz")  # exubrush.world.pose.AXES (a test keeps them equal)
 

@@ -142,6 +142,7 @@ class RunDirectory:
         self.group_sizes = [len(group) for group in prepared.groups]
         self.bounds = [prepared.force_bound(group) for group in prepared.groups]
         self.output = prepared.case.output
+        self.shape_nodes = prepared.case.model.shape_nodes
         self.code = code_identity()
         self.resumed = 0
         self._prepare(overwrite)
@@ -259,11 +260,11 @@ class RunDirectory:
         if not (solution.reaction.shape == (steps, 3)
                 and (moment is None or moment.shape == (steps, 3))
                 and solution.tips.shape == (steps, bristles, 3)
-                and solution.nodes.shape[:2] == (shapes, bristles)
-                and solution.nodes.shape[3] == 3
+                and solution.nodes.shape == (shapes, bristles, self.shape_nodes, 3)
                 and solution.tip_force.shape == (steps, bristles, 3)):
             raise GroupFileError(f"{str(file)!r}: its arrays do not fit {steps} times of "
-                                 f"{bristles} bristles: the file is of another run")
+                                 f"{bristles} bristles of {self.shape_nodes} nodes: the file "
+                                 "is of another run")
         self._check_sane(file, solution)
         return solution
 

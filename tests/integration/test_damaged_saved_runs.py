@@ -119,6 +119,80 @@ def test_a_damaged_result_file_is_named_in_one_line_with_exit_2(solved, tmp_path
         assert "make the run again" in message
 
 
+def _forces_time(cell):
+    def change(path):
+        lines = path.read_text().splitlines()
+        lines[3] = ",".join([cell, *lines[3].split(",")[1:]])
+        path.write_text("\n".join(lines) + "\n")
+    return change
+
+
+def _head(rows, columns):
+    def change(path):
+        record = json.loads(path.read_text())
+        record["parameters"]["head"].update(rows=rows, columns=columns)
+        path.write_text(json.dumps(record))
+    return change
+
+
+POISONED = {  # whole files whose values no run of this run.json writes
+    "a node fewer": ("shapes.npz", lambda p: _rewritten(p, _set("nodes", lambda a: a[:, :, :-1]))),
+    "no nodes": ("shapes.npz", lambda p: _rewritten(p, _set("nodes", lambda a: a[:, :, :0]))),
+    "no bristles": ("shapes.npz", lambda p: _rewritten(p, _set("nodes", lambda a: a[:, :0]))),
+    "a shape fewer": ("shapes.npz", lambda p: _rewritten(
+        p, lambda arrays: arrays.update(time=arrays["time"][:-1], nodes=arrays["nodes"][:-1]))),
+    "complex nodes": ("shapes.npz", lambda p: _rewritten(
+        p, _set("nodes", lambda a: a.astype(complex)))),
+    "boolean coordinates": ("shapes.npz", lambda p: _rewritten(
+        p, _set("coordinates", lambda a: a != 0))),
+    "coordinates without rows": ("shapes.npz", lambda p: _rewritten(
+        p, _set("coordinates", lambda a: a[:0]))),
+    "coordinates without columns": ("shapes.npz", lambda p: _rewritten(
+        p, _set("coordinates", lambda a: a[:, :0]))),
+    "NaN shape time": ("shapes.npz", lambda p: _rewritten(p, _set("time", np.nan))),
+    "infinite tip force": ("tips.npz", lambda p: _rewritten(p, _set("force", np.inf))),
+    "tips of another head": ("tips.npz", lambda p: _rewritten(
+        p, lambda arrays: arrays.update(position=arrays["position"][:, :1],
+                                        force=arrays["force"][:, :1]))),
+    "NaN time": ("forces.csv", _forces_time("nan")),
+    "time going back": ("forces.csv", _forces_time("-1")),
+    "a head of 10^10 bristles": ("run.json", _head(100_000, 100_000)),
+    "a head of 3 bristles": ("run.json", _head(1, 3)),
+}
+
+
+@pytest.mark.parametrize("command", ["frames", "view", "compare"])
+@pytest.mark.parametrize("poison", POISONED)
+def test_a_saved_file_that_does_not_fit_its_run_is_refused_by_every_reader(
+        solved, tmp_path, command, poison):
+    """Every reader of a saved run reads it through one checked loader (read_results):
+    whole files with values their run.json cannot have are refused in one line naming the
+    file, never drawn, replayed or compared; a claimed head is compared with the arrays
+    before any work that grows with it (10^10 bristles: refused at once)."""
+    run = _copy(solved, tmp_path)
+    file, damage = POISONED[poison]
+    shutil.copy(run / "forces.csv", tmp_path / "measured.csv")
+    damage(run / file)
+    args = {"frames": ["frames", run, "--gif-frames", "0", "--out", tmp_path / "frames"],
+            "view": ["view", run, "--write-only"],
+            "compare": ["compare", run, tmp_path / "measured.csv", "--out",
+                        tmp_path / "compare"]}[command]
+    named = str(run / ("shapes.npz" if file == "run.json" else file))
+    _refused(args, named)
+    assert not (run / "exudyn-solution.txt").exists()
+    assert not (tmp_path / "frames").exists() and not (tmp_path / "compare").exists()
+
+
+def test_view_checks_the_coordinates_against_the_head_before_it_writes(solved, tmp_path):
+    """Coordinates of another head (a column more) are refused before the solution file
+    is written: a refused run gets no exudyn-solution.txt."""
+    run = _copy(solved, tmp_path)
+    _rewritten(run / "shapes.npz", _set("coordinates", lambda a: np.hstack([a, a[:, -1:]])))
+    message = _refused(["view", run, "--write-only"], "shapes.npz holds 35 node coordinates")
+    assert "its head has 34" in message
+    assert not (run / "exudyn-solution.txt").exists()
+
+
 def test_a_prb_run_json_without_its_gamma_is_refused_by_frames(solved, tmp_path):
     run = _copy(solved, tmp_path)
     meta = json.loads((run / "run.json").read_text())
@@ -183,6 +257,7 @@ POISONS = {  # what a fresh solve never keeps, each refused on resume
     "boolean tip forces": _set("tip_force", lambda a: a != 0),
     "not finished": lambda arrays: _scalars(arrays, completed=False),
     "times backwards": _set("time", lambda a: a[::-1].copy()),
+    "a node fewer": _set("nodes", lambda a: a[:, :, :-1]),
 }
 
 
