@@ -236,7 +236,7 @@ def sweep(sweep_file, out, scheduler, workers, retry_failed, quiet, example):
         plan = read_sweep(sweep_file)
         prepared = prepare_runs(plan)
         folder = Path(out or default_folder(plan))
-        check_folder(folder, plan)
+        check_folder(folder, plan, prepared)
     except SweepError as err:
         _fail(str(err))
     for warning in sorted({w for case in prepared for w in case.warnings}):

@@ -292,19 +292,62 @@ def test_a_checkpoint_file_of_no_group_is_refused(solved, tmp_path):
 def test_a_resumed_sweep_names_a_damaged_finished_run_before_it_starts(solved, tmp_path,
                                                                        file, damage):
     from exubrush.sweep.plan import read_sweep
-    from exubrush.sweep.runner import check_folder, claim_folder
+    from exubrush.sweep.runner import check_folder, claim_folder, prepare_runs
 
     sweep_file = tmp_path / "one.toml"
     sweep_file.write_text(SWEEP)
     plan = read_sweep(sweep_file)
+    prepared = prepare_runs(plan)
     folder = tmp_path / "sweep"
-    claim_folder(folder, plan)
+    claim_folder(folder, plan, prepared)
     run = shutil.copytree(solved / "saved", folder / plan.runs[0].name)
-    check_folder(folder, plan)  # intact: accepted
+    check_folder(folder, plan, prepared)  # intact: accepted
     DAMAGES[damage](run / file)
     # refused before a cluster is started: 'local' would take seconds
     message = _refused(["sweep", sweep_file, "--out", folder, "--quiet"], str(run / file))
     assert f"delete {run} and run the sweep again" in message
+
+
+POSE = "time [s],z [mm]\n0,0\n0.5,{lift}\n10,{lift}\n"
+POSE_SWEEP = """
+[sweep]
+name = "posed"
+base = "posed.toml"
+[grid]
+"head.seed" = [1, 2]
+"""
+
+
+def test_a_sweep_whose_pose_csv_changed_since_is_refused_naming_it(tmp_path):
+    """A sweep's identity holds the content of every file its runs read (each run's as a
+    single run's resume knows it): run again after its pose CSV changed, it is refused
+    before anything is solved, not reported as done with the old file's results. A file
+    rewritten with the same data (a comment added) is the same input."""
+    from exubrush.execution.local import SerialExecutor
+    from exubrush.parameters.fields import to_toml
+    from exubrush.parameters.io import load_case
+    from exubrush.sweep.plan import read_sweep
+    from exubrush.sweep.runner import check_folder, prepare_runs, run_sweep
+
+    pose = tmp_path / "pose.csv"
+    pose.write_text(POSE.format(lift="0.01"))
+    case = load_case("orthogonal", [*OVERRIDES[:2], "head.rows=1", "head.columns=1",
+                                    f"motion.pose_csv={str(pose)!r}"])
+    (tmp_path / "posed.toml").write_text(to_toml(case))
+    sweep_file = tmp_path / "sweep.toml"
+    sweep_file.write_text(POSE_SWEEP)
+    folder = tmp_path / "out"
+    outcome = run_sweep(read_sweep(sweep_file), folder, SerialExecutor(), progress=False)
+    assert outcome.counts["completed"] == 2
+    forces = (folder / "000-seed=1" / "forces.csv").read_bytes()
+    pose.write_text(f"# the same table\n{POSE.format(lift='0.01')}")
+    plan = read_sweep(sweep_file)
+    check_folder(folder, plan, prepare_runs(plan))  # the same data: resumed
+    pose.write_text(POSE.format(lift="0.02"))
+    message = _refused(["sweep", sweep_file, "--out", folder, "--quiet"],
+                       "a file its runs read, was changed since")
+    assert "motion.pose_csv of run 000-seed=1 has other content" in message
+    assert (folder / "000-seed=1" / "forces.csv").read_bytes() == forces  # not touched
 
 
 # Property tests: any damage to a saved file ends in the file read or one clean error line
