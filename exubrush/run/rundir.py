@@ -37,7 +37,6 @@ from exubrush.run.solution import GroupSolution
 from exubrush.run.solution_files import SOLUTION_FILE
 from exubrush.util.files import DamagedFile, atomic_file, read_npz
 from exubrush.util.provenance import code_identity
-from exubrush.util.tables import check_time_axis
 
 CHECKPOINT = ".checkpoint"
 CODE_FILE = "code.json"  # the exubrush version and commit that wrote the checkpoint
@@ -143,6 +142,7 @@ class RunDirectory:
         self.bounds = [prepared.force_bound(group) for group in prepared.groups]
         self.output = prepared.case.output
         self.shape_nodes = prepared.case.model.shape_nodes
+        self.end_time = prepared.motion.end_time
         self.code = code_identity()
         self.resumed = 0
         self._prepare(overwrite)
@@ -270,16 +270,18 @@ class RunDirectory:
 
     def _check_sane(self, file: Path, solution: GroupSolution) -> None:
         """The checks a fresh solve passes before its group is kept (exubrush.run.solve):
-        it reached the end, at strictly increasing times, and its normal force stays
-        within the group's physical bound (finiteness: files.read_npz)."""
+        it reached the end, on the output grid (the multiples of output.interval), and its
+        normal force stays within the group's physical bound (finiteness: files.read_npz)."""
         bound = self.bounds[self._group_index(file)]
         if not solution.completed:
             raise GroupFileError(f"{str(file)!r}: says its solve did not finish; exubrush "
                                  "keeps finished groups only")
-        try:
-            check_time_axis(solution.time)
-        except ValueError as err:
-            raise GroupFileError(f"{str(file)!r}: its {err}") from None
+        interval, times = self.output.interval, solution.time
+        if not (times.size and np.array_equal(times, np.arange(times.size) * interval)
+                and times[-1] >= self.end_time - interval):
+            raise GroupFileError(f"{str(file)!r}: its times are not those of a finished solve "
+                                 f"(every output.interval = {interval:g} s from 0 to the run's "
+                                 f"end, {self.end_time:g} s)")
         sane = within_bound(solution.reaction, bound)
         if not sane.all():
             k = int(np.argmin(sane))

@@ -135,29 +135,44 @@ def _head(rows, columns):
     return change
 
 
-POISONED = {  # whole files whose values no run of this run.json writes
-    "a node fewer": ("shapes.npz", lambda p: _rewritten(p, _set("nodes", lambda a: a[:, :, :-1]))),
-    "no nodes": ("shapes.npz", lambda p: _rewritten(p, _set("nodes", lambda a: a[:, :, :0]))),
-    "no bristles": ("shapes.npz", lambda p: _rewritten(p, _set("nodes", lambda a: a[:, :0]))),
+POISONED = {  # (file, damage, the reason given): whole files no run of this run.json writes
+    "a node fewer": ("shapes.npz", lambda p: _rewritten(p, _set("nodes", lambda a: a[:, :, :-1])),
+        '2 bristles of 3 nodes'),
+    "no nodes": ("shapes.npz", lambda p: _rewritten(p, _set("nodes", lambda a: a[:, :, :0])),
+        'nodes (15, 2, 0, 3)'),
+    "no bristles": ("shapes.npz", lambda p: _rewritten(p, _set("nodes", lambda a: a[:, :0])),
+        'nodes (15, 0, 3, 3)'),
     "a shape fewer": ("shapes.npz", lambda p: _rewritten(
-        p, lambda arrays: arrays.update(time=arrays["time"][:-1], nodes=arrays["nodes"][:-1]))),
+        p, lambda arrays: arrays.update(time=arrays["time"][:-1], nodes=arrays["nodes"][:-1])),
+        '145 times of forces.csv make 15 shape samples'),
     "complex nodes": ("shapes.npz", lambda p: _rewritten(
-        p, _set("nodes", lambda a: a.astype(complex)))),
+        p, _set("nodes", lambda a: a.astype(complex))),
+        'complex128'),
     "boolean coordinates": ("shapes.npz", lambda p: _rewritten(
-        p, _set("coordinates", lambda a: a != 0))),
+        p, _set("coordinates", lambda a: a != 0)),
+        'bool'),
     "coordinates without rows": ("shapes.npz", lambda p: _rewritten(
-        p, _set("coordinates", lambda a: a[:0]))),
+        p, _set("coordinates", lambda a: a[:0])),
+        'coordinates (0, 35)'),
     "coordinates without columns": ("shapes.npz", lambda p: _rewritten(
-        p, _set("coordinates", lambda a: a[:, :0]))),
-    "NaN shape time": ("shapes.npz", lambda p: _rewritten(p, _set("time", np.nan))),
-    "infinite tip force": ("tips.npz", lambda p: _rewritten(p, _set("force", np.inf))),
+        p, _set("coordinates", lambda a: a[:, :0])),
+        'coordinates (15, 0)'),
+    "NaN shape time": ("shapes.npz", lambda p: _rewritten(p, _set("time", np.nan)),
+        "'time' holds a value that is not finite"),
+    "infinite tip force": ("tips.npz", lambda p: _rewritten(p, _set("force", np.inf)),
+        "'force' holds a value that is not finite"),
     "tips of another head": ("tips.npz", lambda p: _rewritten(
         p, lambda arrays: arrays.update(position=arrays["position"][:, :1],
-                                        force=arrays["force"][:, :1]))),
-    "NaN time": ("forces.csv", _forces_time("nan")),
-    "time going back": ("forces.csv", _forces_time("-1")),
-    "a head of 10^10 bristles": ("run.json", _head(100_000, 100_000)),
-    "a head of 3 bristles": ("run.json", _head(1, 3)),
+                                        force=arrays["force"][:, :1])),
+        "the run's 2 bristles"),
+    "NaN time": ("forces.csv", _forces_time("nan"),
+        'finite numbers only'),
+    "time going back": ("forces.csv", _forces_time("-1"),
+        'times must increase strictly'),
+    "a head of 10^10 bristles": ("run.json", _head(100_000, 100_000),
+        '10000000000 bristles'),
+    "a head of 3 bristles": ("run.json", _head(1, 3),
+        'has 3 bristles'),
 }
 
 
@@ -170,7 +185,7 @@ def test_a_saved_file_that_does_not_fit_its_run_is_refused_by_every_reader(
     file, never drawn, replayed or compared; a claimed head is compared with the arrays
     before any work that grows with it (10^10 bristles: refused at once)."""
     run = _copy(solved, tmp_path)
-    file, damage = POISONED[poison]
+    file, damage, reason = POISONED[poison]
     shutil.copy(run / "forces.csv", tmp_path / "measured.csv")
     damage(run / file)
     args = {"frames": ["frames", run, "--gif-frames", "0", "--out", tmp_path / "frames"],
@@ -178,7 +193,7 @@ def test_a_saved_file_that_does_not_fit_its_run_is_refused_by_every_reader(
             "compare": ["compare", run, tmp_path / "measured.csv", "--out",
                         tmp_path / "compare"]}[command]
     named = str(run / ("shapes.npz" if file == "run.json" else file))
-    _refused(args, named)
+    assert reason in _refused(args, named)
     assert not (run / "exudyn-solution.txt").exists()
     assert not (tmp_path / "frames").exists() and not (tmp_path / "compare").exists()
 
@@ -248,16 +263,24 @@ def _set(name, value):
     return change
 
 
-POISONS = {  # what a fresh solve never keeps, each refused on resume
-    "NaN reaction": _set("reaction", np.nan),
-    "infinite tip": _set("tips", np.inf),
-    "NaN coordinate": _set("coordinates", np.nan),
-    "force beyond the bound": _set("reaction", 1e3),  # the bound of two bristles: ~2 N
-    "complex nodes": _set("nodes", lambda a: a.astype(complex)),
-    "boolean tip forces": _set("tip_force", lambda a: a != 0),
-    "not finished": lambda arrays: _scalars(arrays, completed=False),
-    "times backwards": _set("time", lambda a: a[::-1].copy()),
-    "a node fewer": _set("nodes", lambda a: a[:, :, :-1]),
+POISONS = {  # what a fresh solve never keeps, each refused on resume: (damage, the reason)
+    "NaN reaction": (_set("reaction", np.nan), "'reaction' holds a value that is not finite"),
+    "infinite tip": (_set("tips", np.inf), "'tips' holds a value that is not finite"),
+    "NaN coordinate": (_set("coordinates", np.nan), "'coordinates' holds a value"),
+    # the bound of two bristles of the 1 x 2 head: ~2 N
+    "force beyond the bound": (_set("reaction", 1e3), "normal force 1000 N at t = 0 s"),
+    "complex nodes": (_set("nodes", lambda a: a.astype(complex)), "complex128"),
+    "boolean tip forces": (_set("tip_force", lambda a: a != 0), "bool"),
+    "not finished": (lambda arrays: _scalars(arrays, completed=False),
+                     "says its solve did not finish"),
+    "times backwards": (_set("time", lambda a: a[::-1].copy()), "times are not those"),
+    "times shifted": (_set("time", lambda a: a + 0.005), "times are not those"),
+    "ends early": (lambda arrays: arrays.update(  # 145 -> 125 times, 15 -> 13 shapes
+        {name: arrays[name][:-20] for name in ("time", "reaction", "tips", "tip_force",
+                                               "drive_moment")},
+        nodes=arrays["nodes"][:13], coordinates=arrays["coordinates"][:13]),
+        "times are not those"),
+    "a node fewer": (_set("nodes", lambda a: a[:, :, :-1]), "bristles of 2 nodes"),
 }
 
 
@@ -268,8 +291,10 @@ def test_a_checkpoint_group_a_fresh_solve_would_not_keep_is_refused(solved, tmp_
     anything and names the file (deleting it solves that group again)."""
     run = _copy(solved, tmp_path, "resumable")
     group = run / ".checkpoint" / "group-00001.npz"
-    _rewritten(group, POISONS[poison])
+    damage, reason = POISONS[poison]
+    _rewritten(group, damage)
     message = _refused([*RUN, "--out", run], str(group))
+    assert reason in message
     assert "delete that file to solve its bristle group again" in message
     assert not (run / "run.json").exists()
 
