@@ -23,6 +23,7 @@ from __future__ import annotations
 import dataclasses
 import hashlib
 import json
+import math
 import re
 import shutil
 from pathlib import Path
@@ -301,19 +302,23 @@ class RunDirectory:
 
 
 def _plain_scalars(solution: GroupSolution) -> bool:
-    """Whether a group read back has the scalar types it was written with."""
-    numbers = [getattr(solution, f.name) for f in dataclasses.fields(solution)
-               if f.name not in (*solution.ARRAYS, "statistics", "completed", "message",
-                                 "handle_inertia", "retried")]
-    numbers += list(dataclasses.astuple(solution.statistics))
+    """Whether a group read back has the scalars a solve writes: of the types written,
+    finite (JSON lets NaN and Infinity through), the counts, times and sizes not negative
+    and the handle's mass positive (a NaN mass made every head force empty)."""
+    counts = [getattr(solution, f.name) for f in dataclasses.fields(solution)
+              if f.name not in (*solution.ARRAYS, "statistics", "completed", "message",
+                                "handle_inertia", "retried")]
+    counts += list(dataclasses.astuple(solution.statistics))
     inertia = solution.handle_inertia
     if not (isinstance(inertia, list) and len(inertia) == 3
             and all(isinstance(row, list) and len(row) == 3 for row in inertia)):
         return False
-    numbers += [n for row in inertia for n in row]
+    numbers = [*counts, *(n for row in inertia for n in row)]
     return (isinstance(solution.completed, bool) and isinstance(solution.retried, bool)
             and isinstance(solution.message, str)
-            and all(isinstance(n, int | float) and not isinstance(n, bool) for n in numbers))
+            and all(isinstance(n, int | float) and not isinstance(n, bool)
+                    and math.isfinite(n) for n in numbers)
+            and min(counts) >= 0 and solution.handle_mass > 0.0)
 
 
 def _temporaries(names: set[str]) -> set[str]:

@@ -281,6 +281,15 @@ POISONS = {  # what a fresh solve never keeps, each refused on resume: (damage, 
         nodes=arrays["nodes"][:13], coordinates=arrays["coordinates"][:13]),
         "times are not those"),
     "a node fewer": (_set("nodes", lambda a: a[:, :, :-1]), "bristles of 2 nodes"),
+    "NaN handle mass": (lambda arrays: _scalars(arrays, handle_mass=float("nan")),
+                        "'scalars' are not those of a finished group"),
+    "negative handle mass": (lambda arrays: _scalars(arrays, handle_mass=-1e-6),
+                             "'scalars' are not those of a finished group"),
+    "infinite inertia": (lambda arrays: _scalars(arrays, handle_inertia=[[float("inf")] * 3] * 3),
+                         "'scalars' are not those of a finished group"),
+    "negative step count": (lambda arrays: _scalars(arrays, statistics={
+        **json.loads(str(arrays["scalars"]))["statistics"], "steps": -1}),
+        "'scalars' are not those of a finished group"),
 }
 
 
