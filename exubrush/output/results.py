@@ -22,7 +22,7 @@ from exubrush.output.metrics import friction_coefficient, travelled_distance
 from exubrush.output.tufts import tuft_columns, tuft_forces
 from exubrush.output.vibration import vibration_summary
 from exubrush.parameters.case import Case
-from exubrush.parameters.fields import ParameterError, build
+from exubrush.parameters.fields import MAGNITUDE, ParameterError, build
 from exubrush.util.files import atomic_file, read_npz, write_csv
 from exubrush.world.kinematics import SLIDE_AXES
 from exubrush.world.mesh import MeshError, read_mesh
@@ -355,13 +355,18 @@ def _checked(results: Results, directory: Path) -> Results:
     from exubrush.util.tables import check_time_axis
 
     steps, wrench = results.time.size, results.wrench
+    columns = [getattr(results, name) for name in _SERIES]  # time first
+    if wrench is not None:
+        columns += [wrench.force, wrench.moment, wrench.head_force, wrench.head_moment]
     try:
-        check_time_axis(results.time, *(getattr(results, name) for name in _SERIES),
-                        *(() if wrench is None else (wrench.force, wrench.moment,
-                                                     wrench.head_force, wrench.head_moment)))
+        check_time_axis(*columns)
     except ValueError as err:
         raise ResultsError(f"{str(directory / 'forces.csv')!r}: {err}{REMAKE}") from None
-    bristles = points = samples = kept = None  # claimed by run.json (None: not claimed)
+    if max(float(np.max(np.abs(c))) for c in columns) > MAGNITUDE[1]:
+        raise ResultsError(f"{str(directory / 'forces.csv')!r}: holds a value beyond "
+                           f"{MAGNITUDE[1]:g}, which exubrush never writes{REMAKE}")
+    # claimed by run.json (None: not claimed)
+    bristles = points = samples = stride = kept = None
     if "parameters" in results.metadata:
         try:
             case = results.case()
@@ -369,6 +374,7 @@ def _checked(results: Results, directory: Path) -> Results:
             raise ResultsError(f"{str(directory / 'run.json')!r}: {err}") from None
         bristles, points = case.head.count, case.model.shape_nodes + 1
         samples, kept = case.output.shape_samples(steps), case.output.solution_file
+        stride = case.output.shape_stride
     shapes = directory / "shapes.npz"
     if shapes.is_file():
         nodes, times = results.shape_nodes, results.shape_time
@@ -379,6 +385,11 @@ def _checked(results: Results, directory: Path) -> Results:
             raise ResultsError(f"{str(shapes)!r}: holds {times.size} times and {len(nodes)} "
                                f"shapes, but the {steps} times of forces.csv make {samples} "
                                f"shape samples (output.shape_interval){REMAKE}")
+        # forces.csv holds 9 significant digits: its times are within 5e-9 of the shapes'
+        if samples is not None and not np.allclose(times, results.time[::stride], rtol=1e-8,
+                                                   atol=0.0):
+            raise ResultsError(f"{str(shapes)!r}: its times are not every {stride}th time of "
+                               f"forces.csv (output.shape_interval){REMAKE}")
         coordinates = results.shape_coordinates
         if coordinates is None and kept:
             raise ResultsError(f"{str(shapes)!r} lacks the node coordinates its run kept "
@@ -390,10 +401,13 @@ def _checked(results: Results, directory: Path) -> Results:
                                f"times{REMAKE}")
         try:
             check_time_axis(times)
-            if coordinates is not None:
-                check_time_axis(coordinates[:, 0])
         except ValueError as err:
             raise ResultsError(f"{str(shapes)!r}: {err}{REMAKE}") from None
+        # both are multiples of output.interval computed apart: equal to rounding (1e-16)
+        if coordinates is not None and not np.allclose(coordinates[:, 0], times, rtol=1e-9,
+                                                       atol=1e-12):
+            raise ResultsError(f"{str(shapes)!r}: its node coordinates are not at its shapes' "
+                               f"times{REMAKE}")
     tips, forces = results.tip_position, results.tip_force
     if tips is not None and not (tips.shape == forces.shape
                                  and _fits(tips.shape, (steps, bristles, 3))):
@@ -411,8 +425,9 @@ def _fits(shape: tuple, expected: tuple) -> bool:
 
 
 def _read_arrays(path: Path, required, optional=None) -> dict[str, np.ndarray] | None:
-    """The arrays of a result's .npz file (files.read_npz), None if there is no such file."""
-    return read_npz(path, required, optional) if path.is_file() else None
+    """The arrays of a result's .npz file (files.read_npz), None if there is no such file;
+    no value beyond the magnitudes exubrush computes with (parameters.fields.MAGNITUDE)."""
+    return read_npz(path, required, optional, MAGNITUDE[1]) if path.is_file() else None
 
 
 _SERIES = ("time", "slider_position", "normal_force", "tangential_force", "head_height")

@@ -31,7 +31,7 @@ from pathlib import Path
 import numpy as np
 
 from exubrush.output.results import RESULT_FILES as SAVED_FILES
-from exubrush.parameters.fields import to_plain
+from exubrush.parameters.fields import MAGNITUDE, to_plain
 from exubrush.run.prepared import PreparedCase
 from exubrush.run.sanity import within_bound
 from exubrush.run.solution import GroupSolution
@@ -245,7 +245,8 @@ class RunDirectory:
 
     def _read_group(self, file: Path) -> GroupSolution:
         arrays = read_npz(file, {"scalars": None, "time": 1, "reaction": 2, "tips": 3,
-                                 "nodes": 4, "tip_force": 3}, {"coordinates": 2, "drive_moment": 2})
+                                 "nodes": 4, "tip_force": 3}, {"coordinates": 2, "drive_moment": 2},
+                          MAGNITUDE[1])  # no value beyond what exubrush computes with
         if arrays["scalars"].dtype.kind != "U" or arrays["scalars"].ndim != 0:
             raise GroupFileError(f"{str(file)!r}: its 'scalars' are not one text")
         try:

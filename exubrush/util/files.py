@@ -69,14 +69,15 @@ _NPZ_FAULTS = (OSError, ValueError, EOFError, KeyError, zipfile.BadZipFile, zlib
 
 
 def read_npz(path: str | Path, required: Mapping[str, int | None],
-             optional: Mapping[str, int | None] | None = None) -> dict[str, np.ndarray]:
+             optional: Mapping[str, int | None] | None = None,
+             largest: float = math.inf) -> dict[str, np.ndarray]:
     """The arrays of an ``.npz`` archive (numpy.savez), each read whole.
 
     ``required`` and ``optional`` map each array's name to its number of dimensions, or to
     None for an array of any shape and type; an array with a number of dimensions must
     hold finite real numbers (integers or floats: exubrush writes no boolean, complex,
     infinite or NaN value in such an array, and numpy would cast the first two without a
-    word). Pickled objects are never loaded.
+    word), none of magnitude beyond ``largest``. Pickled objects are never loaded.
 
     Raises
     ------
@@ -113,4 +114,7 @@ def read_npz(path: str | Path, required: Mapping[str, int | None],
         if not np.all(np.isfinite(array)):
             raise DamagedFile(f"{name}: array {key!r} holds a value that is not finite "
                               "(NaN or infinite), which exubrush never writes")
+        if array.size and np.max(np.abs(array)) > largest:
+            raise DamagedFile(f"{name}: array {key!r} holds a value beyond {largest:g}, "
+                              "which exubrush never writes")
     return arrays

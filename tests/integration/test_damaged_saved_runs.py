@@ -119,10 +119,13 @@ def test_a_damaged_result_file_is_named_in_one_line_with_exit_2(solved, tmp_path
         assert "make the run again" in message
 
 
-def _forces_time(cell):
+def _forces_cell(column, cell):
+    """forces.csv with the cell of its third sample in ``column`` (0: time) set to ``cell``."""
     def change(path):
         lines = path.read_text().splitlines()
-        lines[3] = ",".join([cell, *lines[3].split(",")[1:]])
+        cells = lines[3].split(",")
+        cells[column] = cell
+        lines[3] = ",".join(cells)
         path.write_text("\n".join(lines) + "\n")
     return change
 
@@ -159,15 +162,23 @@ POISONED = {  # (file, damage, the reason given): whole files no run of this run
         'coordinates (15, 0)'),
     "NaN shape time": ("shapes.npz", lambda p: _rewritten(p, _set("time", np.nan)),
         "'time' holds a value that is not finite"),
+    "nodes of 1e300 mm": ("shapes.npz", lambda p: _rewritten(p, _set("nodes", 1e300)),
+        "'nodes' holds a value beyond 1e+20"),
+    "shape times shifted": ("shapes.npz", lambda p: _rewritten(
+        p, _set("time", lambda a: a + 100.0)), "its times are not every 10th time"),
+    "coordinates at other times": ("shapes.npz", lambda p: _rewritten(
+        p, _set("coordinates", lambda a: a + np.eye(1, a.shape[1]))),
+        "coordinates are not at its shapes' times"),
     "infinite tip force": ("tips.npz", lambda p: _rewritten(p, _set("force", np.inf)),
         "'force' holds a value that is not finite"),
     "tips of another head": ("tips.npz", lambda p: _rewritten(
         p, lambda arrays: arrays.update(position=arrays["position"][:, :1],
                                         force=arrays["force"][:, :1])),
         "the run's 2 bristles"),
-    "NaN time": ("forces.csv", _forces_time("nan"),
+    "NaN time": ("forces.csv", _forces_cell(0, "nan"),
         'finite numbers only'),
-    "time going back": ("forces.csv", _forces_time("-1"),
+    "normal force of 1e300 N": ("forces.csv", _forces_cell(3, "1e300"), "beyond 1e+20"),
+    "time going back": ("forces.csv", _forces_cell(0, "-1"),
         'times must increase strictly'),
     "a head of 10^10 bristles": ("run.json", _head(100_000, 100_000),
         '10000000000 bristles'),
@@ -281,6 +292,7 @@ POISONS = {  # what a fresh solve never keeps, each refused on resume: (damage, 
         nodes=arrays["nodes"][:13], coordinates=arrays["coordinates"][:13]),
         "times are not those"),
     "a node fewer": (_set("nodes", lambda a: a[:, :, :-1]), "bristles of 2 nodes"),
+    "tips of 1e300 mm": (_set("tips", 1e300), "'tips' holds a value beyond 1e+20"),
     "NaN handle mass": (lambda arrays: _scalars(arrays, handle_mass=float("nan")),
                         "'scalars' are not those of a finished group"),
     "negative handle mass": (lambda arrays: _scalars(arrays, handle_mass=-1e-6),

@@ -49,3 +49,11 @@ def test_integer_and_float_arrays_are_read(tmp_path):
     np.savez(path, time=np.arange(3), force=np.zeros((3, 2)))
     arrays = read_npz(path, {"time": 1, "force": 2})
     assert arrays["time"].tolist() == [0, 1, 2] and arrays["force"].shape == (3, 2)
+
+
+def test_a_value_beyond_the_largest_asked_for_is_refused(tmp_path):
+    path = tmp_path / "shapes.npz"
+    np.savez(path, time=np.array([0.0, -2e20]))
+    assert read_npz(path, {"time": 1})["time"][1] == -2e20  # no bound unless asked
+    with pytest.raises(DamagedFile, match="'time' holds a value beyond 1e"):
+        read_npz(path, {"time": 1}, largest=1e20)
