@@ -23,6 +23,7 @@ from exubrush.output.tufts import tuft_columns, tuft_forces
 from exubrush.output.vibration import vibration_summary
 from exubrush.parameters.case import Case
 from exubrush.parameters.fields import MAGNITUDE, ParameterError, build
+from exubrush.run.solution_files import HANDLE_COORDINATES
 from exubrush.util.files import atomic_file, read_npz, write_csv
 from exubrush.world.kinematics import SLIDE_AXES
 from exubrush.world.mesh import MeshError, read_mesh
@@ -348,7 +349,7 @@ def _checked(results: Results, directory: Path) -> Results:
     ResultsError naming the file: forces.csv finite at strictly increasing times; shapes.npz
     with the shape samples of those times (output.shape_interval), the head's bristles and
     the model's nodes at increasing times, and, where the run kept them
-    (output.solution_file), a row of node coordinates per shape sample; tips.npz with every
+    (output.solution_file), a row of the head's coordinates per shape sample; tips.npz with every
     time and bristle. (Finite real values in the .npz files: files.read_npz.) The sizes are
     compared before any work that grows with them: a run.json may claim any head. Results
     saved from Python without parameters claim no run: only their files are compared."""
@@ -366,7 +367,7 @@ def _checked(results: Results, directory: Path) -> Results:
         raise ResultsError(f"{str(directory / 'forces.csv')!r}: holds a value beyond "
                            f"{MAGNITUDE[1]:g}, which exubrush never writes{REMAKE}")
     # claimed by run.json (None: not claimed)
-    bristles = points = samples = stride = kept = None
+    bristles = points = samples = stride = kept = columns = None
     if "parameters" in results.metadata:
         try:
             case = results.case()
@@ -375,6 +376,7 @@ def _checked(results: Results, directory: Path) -> Results:
         bristles, points = case.head.count, case.model.shape_nodes + 1
         samples, kept = case.output.shape_samples(steps), case.output.solution_file
         stride = case.output.shape_stride
+        columns = 1 + HANDLE_COORDINATES + bristles * case.model.bristle_coordinates
     shapes = directory / "shapes.npz"
     if shapes.is_file():
         nodes, times = results.shape_nodes, results.shape_time
@@ -394,11 +396,11 @@ def _checked(results: Results, directory: Path) -> Results:
         if coordinates is None and kept:
             raise ResultsError(f"{str(shapes)!r} lacks the node coordinates its run kept "
                                f"(output.solution_file){REMAKE}")
-        if coordinates is not None and not (len(coordinates) == times.size
-                                            and coordinates.shape[1] >= 2):
+        if coordinates is not None and not (
+                _fits(coordinates.shape, (times.size, columns)) and coordinates.shape[1] >= 2):
             raise ResultsError(f"{str(shapes)!r}: its node coordinates {coordinates.shape} are "
-                               f"not a row (time, coordinates) for each of its {times.size} "
-                               f"times{REMAKE}")
+                               f"not a row of {columns or 'time and'} coordinates for each of "
+                               f"its {times.size} times{REMAKE}")
         try:
             check_time_axis(times)
         except ValueError as err:

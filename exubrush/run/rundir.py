@@ -35,7 +35,7 @@ from exubrush.parameters.fields import MAGNITUDE, to_plain
 from exubrush.run.prepared import PreparedCase
 from exubrush.run.sanity import within_bound
 from exubrush.run.solution import GroupSolution
-from exubrush.run.solution_files import SOLUTION_FILE
+from exubrush.run.solution_files import HANDLE_COORDINATES, SOLUTION_FILE
 from exubrush.util.files import DamagedFile, atomic_file, read_npz
 from exubrush.util.provenance import code_identity
 
@@ -143,6 +143,7 @@ class RunDirectory:
         self.bounds = [prepared.force_bound(group) for group in prepared.groups]
         self.output = prepared.case.output
         self.shape_nodes = prepared.case.model.shape_nodes
+        self.bristle_coordinates = prepared.case.model.bristle_coordinates
         self.end_time = prepared.motion.end_time
         self.code = code_identity()
         self.resumed = 0
@@ -268,7 +269,31 @@ class RunDirectory:
                                  f"{bristles} bristles of {self.shape_nodes} nodes: the file "
                                  "is of another run")
         self._check_sane(file, solution)
+        self._check_coordinates(file, solution, shapes, bristles)
         return solution
+
+    def _check_coordinates(self, file: Path, solution: GroupSolution, shapes: int,
+                           bristles: int) -> None:
+        """Node coordinates where the run keeps them (output.solution_file), and only
+        there: a row (time, the handle's coordinates, each bristle's) at each shape
+        sample."""
+        coordinates = solution.coordinates
+        kept = self.output.solution_file
+        if (coordinates is None) == kept:
+            raise GroupFileError(f"{str(file)!r}: " + (
+                "lacks the node coordinates its run keeps (output.solution_file)" if kept
+                else "holds node coordinates, but its run keeps none (output.solution_file)"))
+        if coordinates is None:
+            return
+        columns = 1 + HANDLE_COORDINATES + bristles * self.bristle_coordinates
+        times = solution.time[::self.output.shape_stride]
+        # both are multiples of an output interval computed apart: equal to rounding
+        if not (coordinates.shape == (shapes, columns)
+                and np.allclose(coordinates[:, 0], times, rtol=1e-9, atol=1e-12)):
+            raise GroupFileError(f"{str(file)!r}: its node coordinates {coordinates.shape} are "
+                                 f"not a row of {columns} (time, handle, {bristles} bristles) "
+                                 f"at each of its {shapes} shape samples: the file is of "
+                                 "another run")
 
     def _check_sane(self, file: Path, solution: GroupSolution) -> None:
         """The checks a fresh solve passes before its group is kept (exubrush.run.solve):

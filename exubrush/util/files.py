@@ -75,9 +75,10 @@ def read_npz(path: str | Path, required: Mapping[str, int | None],
 
     ``required`` and ``optional`` map each array's name to its number of dimensions, or to
     None for an array of any shape and type; an array with a number of dimensions must
-    hold finite real numbers (integers or floats: exubrush writes no boolean, complex,
-    infinite or NaN value in such an array, and numpy would cast the first two without a
-    word), none of magnitude beyond ``largest``. Pickled objects are never loaded.
+    hold finite 64-bit floats, as exubrush writes them (numpy would cast booleans,
+    integers, complex numbers and shorter floats without a word, and with them values
+    exubrush never wrote), none of magnitude beyond ``largest``. Pickled objects are never
+    loaded.
 
     Raises
     ------
@@ -107,10 +108,9 @@ def read_npz(path: str | Path, required: Mapping[str, int | None],
         dimensions = {**optional, **required}[key]
         if dimensions is None:
             continue
-        real = array.dtype.kind in "iuf"  # integer, unsigned or floating point
-        if array.ndim != dimensions or not real:
+        if array.ndim != dimensions or array.dtype != np.float64:
             raise DamagedFile(f"{name}: array {key!r} is {array.ndim}-dimensional "
-                              f"{array.dtype}, not {dimensions}-dimensional real numbers")
+                              f"{array.dtype}, not {dimensions}-dimensional float64")
         if not np.all(np.isfinite(array)):
             raise DamagedFile(f"{name}: array {key!r} holds a value that is not finite "
                               "(NaN or infinite), which exubrush never writes")

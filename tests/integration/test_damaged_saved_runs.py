@@ -210,12 +210,12 @@ def test_a_saved_file_that_does_not_fit_its_run_is_refused_by_every_reader(
 
 
 def test_view_checks_the_coordinates_against_the_head_before_it_writes(solved, tmp_path):
-    """Coordinates of another head (a column more) are refused before the solution file
-    is written: a refused run gets no exudyn-solution.txt."""
+    """Coordinates of another head (a column more: 1 + 6 + 2 x 14 is the run's) are refused
+    before the solution file is written: a refused run gets no exudyn-solution.txt."""
     run = _copy(solved, tmp_path)
     _rewritten(run / "shapes.npz", _set("coordinates", lambda a: np.hstack([a, a[:, -1:]])))
-    message = _refused(["view", run, "--write-only"], "shapes.npz holds 35 node coordinates")
-    assert "its head has 34" in message
+    message = _refused(["view", run, "--write-only"], str(run / "shapes.npz"))
+    assert "node coordinates (15, 36) are not a row of 35 coordinates" in message
     assert not (run / "exudyn-solution.txt").exists()
 
 
@@ -281,6 +281,7 @@ POISONS = {  # what a fresh solve never keeps, each refused on resume: (damage, 
     # the bound of two bristles of the 1 x 2 head: ~2 N
     "force beyond the bound": (_set("reaction", 1e3), "normal force 1000 N at t = 0 s"),
     "complex nodes": (_set("nodes", lambda a: a.astype(complex)), "complex128"),
+    "single-precision nodes": (_set("nodes", lambda a: a.astype(np.float32)), "float32"),
     "boolean tip forces": (_set("tip_force", lambda a: a != 0), "bool"),
     "not finished": (lambda arrays: _scalars(arrays, completed=False),
                      "says its solve did not finish"),
@@ -293,6 +294,12 @@ POISONS = {  # what a fresh solve never keeps, each refused on resume: (damage, 
         "times are not those"),
     "a node fewer": (_set("nodes", lambda a: a[:, :, :-1]), "bristles of 2 nodes"),
     "tips of 1e300 mm": (_set("tips", 1e300), "'tips' holds a value beyond 1e+20"),
+    "coordinates without rows": (_set("coordinates", lambda a: a[:0]),
+                                 "coordinates (0, 21) are not a row of 21"),
+    "a coordinate more": (_set("coordinates", lambda a: np.hstack([a, a[:, -1:]])),
+                          "coordinates (15, 22) are not a row of 21"),
+    "no coordinates": (lambda arrays: arrays.pop("coordinates"),
+                       "lacks the node coordinates its run keeps"),
     "NaN handle mass": (lambda arrays: _scalars(arrays, handle_mass=float("nan")),
                         "'scalars' are not those of a finished group"),
     "negative handle mass": (lambda arrays: _scalars(arrays, handle_mass=-1e-6),
@@ -466,3 +473,69 @@ def test_any_damaged_checkpoint_group_is_read_or_refused_in_one_line(
         RunDirectory(run, prepared_case)
     except RunDirectoryError as err:
         assert "\n" not in str(err) and name in str(err), err
+
+
+# Property tests: whole files with poisoned values (the zip and headers intact)
+
+
+ARRAYS = {"shapes.npz": ("time", "nodes", "coordinates"), "tips.npz": ("position", "force"),
+          "group-00000.npz": ("time", "reaction", "tips", "nodes", "tip_force", "coordinates",
+                              "drive_moment")}
+poisons = st.one_of(
+    st.tuples(st.just("value"), st.sampled_from([np.nan, np.inf, -np.inf, 1e300, -3e20])),
+    st.tuples(st.just("type"), st.sampled_from([complex, bool, np.float16, np.int8])),
+    st.tuples(st.just("cut"), st.integers(0, 3), st.integers(0, 2)),
+)
+
+
+def _poisoned(array: np.ndarray, poison, at: float) -> np.ndarray:
+    """``array`` with one value set, its type changed, or an axis cut to ``keep`` entries."""
+    kind, *what = poison
+    if kind == "value":
+        flat = array.astype(float).ravel()
+        flat[min(int(at * flat.size), flat.size - 1)] = what[0]
+        return flat.reshape(array.shape)
+    if kind == "type":
+        return array.astype(what[0])
+    axis = min(what[0], array.ndim - 1)
+    return np.take(array, range(min(what[1], array.shape[axis])), axis=axis)
+
+
+@settings(max_examples=60, deadline=None,
+          suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
+@given(file=st.sampled_from(sorted(ARRAYS)), data=st.data())
+def test_any_poisoned_array_is_refused_in_one_line_or_changes_nothing(
+        solved, prepared_case, tmp_path, file, data):
+    """An array of a saved run or a checkpoint group with one value NaN, infinite or beyond
+    1e20, of another type, or with an axis cut: every reader (read_results, frames, view,
+    a resume) refuses it in one line naming the file, or reads what was written (a cast
+    that changes nothing)."""
+    from exubrush.output.frames import load_shapes
+    from exubrush.output.results import ResultsError, read_results
+    from exubrush.output.viewer import prepare
+    from exubrush.run.rundir import RunDirectory, RunDirectoryError
+
+    name = data.draw(st.sampled_from(ARRAYS[file]))
+    poison, at = data.draw(poisons), data.draw(st.floats(0.0, 1.0))
+    which = "resumable" if file.startswith("group") else "saved"
+    run = tmp_path / which
+    shutil.rmtree(run, ignore_errors=True)
+    shutil.copytree(solved / which, run)
+    path = run / ".checkpoint" / file if which == "resumable" else run / file
+    with np.load(path) as archive:
+        original = archive[name]
+    _rewritten(path, lambda arrays: arrays.update({name: _poisoned(original, poison, at)}))
+    with np.load(path) as archive:
+        unchanged = (archive[name].shape == original.shape
+                     and np.array_equal(archive[name].astype(complex), original))
+    try:
+        if which == "resumable":
+            RunDirectory(run, prepared_case)
+        else:
+            read_results(run)
+            load_shapes(run)
+            prepare(run)
+    except (ResultsError, RunDirectoryError) as err:
+        assert "\n" not in str(err) and str(path) in str(err), err
+    else:
+        assert unchanged, f"{file} {name} {poison} read without a word"
