@@ -156,10 +156,10 @@ POISONED = {  # (file, damage, the reason given): whole files no run of this run
         'bool'),
     "coordinates without rows": ("shapes.npz", lambda p: _rewritten(
         p, _set("coordinates", lambda a: a[:0])),
-        'coordinates (0, 35)'),
+        'coordinates (0, 35) are not rows of 35'),
     "coordinates without columns": ("shapes.npz", lambda p: _rewritten(
         p, _set("coordinates", lambda a: a[:, :0])),
-        'coordinates (15, 0)'),
+        'coordinates (15, 0) are not rows of 35'),
     "NaN shape time": ("shapes.npz", lambda p: _rewritten(p, _set("time", np.nan)),
         "'time' holds a value that is not finite"),
     "nodes of 1e300 mm": ("shapes.npz", lambda p: _rewritten(p, _set("nodes", 1e300)),
@@ -215,8 +215,26 @@ def test_view_checks_the_coordinates_against_the_head_before_it_writes(solved, t
     run = _copy(solved, tmp_path)
     _rewritten(run / "shapes.npz", _set("coordinates", lambda a: np.hstack([a, a[:, -1:]])))
     message = _refused(["view", run, "--write-only"], str(run / "shapes.npz"))
-    assert "node coordinates (15, 36) are not a row of 35 coordinates" in message
+    assert "node coordinates (15, 36) are not rows of 35 coordinates" in message
     assert not (run / "exudyn-solution.txt").exists()
+
+
+@pytest.mark.parametrize("status", ["completed", "failed"])
+def test_coordinates_a_row_short_are_a_stopped_runs_not_a_completed_ones(solved, tmp_path,
+                                                                          status):
+    """A run that stopped early keeps the coordinate rows of its shortest group, which may
+    end a shape sample before its shapes; a completed run has a row at every sample."""
+    from exubrush.output.results import ResultsError, read_results
+
+    run = _copy(solved, tmp_path)
+    record = json.loads((run / "run.json").read_text())
+    (run / "run.json").write_text(json.dumps({**record, "status": status}))
+    _rewritten(run / "shapes.npz", _set("coordinates", lambda a: a[:-1]))
+    if status == "completed":
+        with pytest.raises(ResultsError, match=r"coordinates \(14, 35\) are not rows"):
+            read_results(run)
+    else:
+        assert len(read_results(run).shape_coordinates) == 14
 
 
 def test_a_prb_run_json_without_its_gamma_is_refused_by_frames(solved, tmp_path):
