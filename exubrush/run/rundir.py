@@ -133,10 +133,13 @@ def _describe(code: dict | None) -> str:
 
 class RunDirectory:
     """Checks and prepares ``path`` for a run of ``prepared``; stores and reloads finished
-    groups."""
+    groups. ``afresh`` ends a refusal of a damaged or foreign checkpoint: how the caller's
+    user starts the run afresh (a sweep has no --overwrite)."""
 
-    def __init__(self, path: str | Path, prepared: PreparedCase, overwrite: bool = False):
+    def __init__(self, path: str | Path, prepared: PreparedCase, overwrite: bool = False,
+                 afresh: str = "pass --overwrite to start afresh"):
         self.path = Path(path)
+        self.afresh = afresh  # how the caller's user starts the run afresh (messages)
         self.checkpoint = self.path / CHECKPOINT
         self.fingerprint = case_fingerprint(prepared)
         self.group_sizes = [len(group) for group in prepared.groups]
@@ -192,11 +195,10 @@ class RunDirectory:
             stored = json.loads(path.read_text(encoding="utf-8")) if path.is_file() else None
         except (OSError, ValueError) as err:  # ValueError: not UTF-8 text, not JSON
             raise RunDirectoryError(f"--out {self.path}: {path} cannot be read ({err}): the "
-                                    "checkpoint is damaged; pass --overwrite to start "
-                                    "afresh") from None
+                                    f"checkpoint is damaged; {self.afresh}") from None
         if stored is not None and not isinstance(stored, dict):
             raise RunDirectoryError(f"--out {self.path}: {path} is not the record exubrush "
-                                    "writes; pass --overwrite to start afresh")
+                                    f"writes; {self.afresh}")
         same = stored is not None and stored.get("exubrush") == self.code["exubrush"] and (
             None in (stored.get("commit"), self.code["commit"])
             or stored.get("commit") == self.code["commit"])
@@ -204,7 +206,7 @@ class RunDirectory:
             raise RunDirectoryError(
                 f"--out {self.path}: its checkpoint was written by {_describe(stored)}, this "
                 f"is {_describe(self.code)}; resuming would mix bristles solved by two "
-                "versions of the code: pass --overwrite to start afresh")
+                f"versions of the code: {self.afresh}")
 
     def _stored_fingerprint(self) -> str | None:
         path = self.checkpoint / "fingerprint"
@@ -212,8 +214,7 @@ class RunDirectory:
             return path.read_text(encoding="utf-8").strip() if path.is_file() else None
         except (OSError, UnicodeDecodeError) as err:
             raise RunDirectoryError(f"--out {self.path}: {path} cannot be read ({err}): the "
-                                    "checkpoint is damaged; pass --overwrite to start "
-                                    "afresh") from None
+                                    f"checkpoint is damaged; {self.afresh}") from None
 
     def _finished_run(self) -> bool:
         return recorded_status(self.path) == "completed"
@@ -234,7 +235,7 @@ class RunDirectory:
             except (DamagedFile, GroupFileError) as err:
                 raise RunDirectoryError(
                     f"--out {self.path}: {err}; delete that file to solve its bristle group "
-                    "again, or pass --overwrite to start afresh") from None
+                    f"again, or {self.afresh}") from None
         return groups
 
     def _group_index(self, file: Path) -> int:

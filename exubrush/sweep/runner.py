@@ -211,7 +211,8 @@ def run_sweep(plan: SweepPlan, folder: str | Path, executor: Executor,
         if recorded == "completed" or (recorded == "failed" and not retry_failed):
             state.status, skipped = recorded, skipped + 1
             continue
-        state.store = RunDirectory(state.folder, state.prepared, overwrite=False)
+        state.store = RunDirectory(state.folder, state.prepared, overwrite=False,
+                                   afresh=f"delete {state.folder} to solve that run anew")
         stored = state.store.stored_groups()
         state.solutions = [stored.get(i) for i in range(len(state.prepared.groups))]
         state.returned = len(stored)

@@ -379,6 +379,30 @@ def test_a_resumed_sweep_names_a_damaged_finished_run_before_it_starts(solved, t
     assert f"delete {run} and run the sweep again" in message
 
 
+def test_a_resumed_sweep_says_how_to_solve_a_run_with_a_poisoned_group_anew(solved,
+                                                                            tmp_path):
+    """A sweep has no --overwrite: a refused checkpoint of one of its runs says to delete
+    that run's folder."""
+    from exubrush.execution.local import SerialExecutor
+    from exubrush.run.rundir import RunDirectoryError
+    from exubrush.sweep.plan import read_sweep
+    from exubrush.sweep.runner import claim_folder, prepare_runs, run_sweep
+
+    sweep_file = tmp_path / "one.toml"
+    sweep_file.write_text(SWEEP.replace('"head.columns=2"]', '"head.columns=2", ' + ", ".join(
+        f'"{o}"' for o in OVERRIDES[:3]) + "]"))
+    plan = read_sweep(sweep_file)
+    folder = tmp_path / "sweep"
+    claim_folder(folder, plan, prepare_runs(plan))
+    run = folder / plan.runs[0].name
+    shutil.copytree(solved / "resumable", run)  # the same case: its checkpoint resumes
+    _rewritten(run / ".checkpoint" / "group-00000.npz", _set("reaction", np.nan))
+    with pytest.raises(RunDirectoryError) as refused:
+        run_sweep(plan, folder, SerialExecutor(), progress=False)
+    assert f"delete {run} to solve that run anew" in str(refused.value)
+    assert "--overwrite" not in str(refused.value)
+
+
 POSE = "time [s],z [mm]\n0,0\n0.5,{lift}\n10,{lift}\n"
 POSE_SWEEP = """
 [sweep]
