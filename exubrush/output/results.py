@@ -345,83 +345,109 @@ def read_results(directory: str | Path) -> Results:
 
 
 def _checked(results: Results, directory: Path) -> Results:
-    """``results`` if every array read fits what run.json says the run was, else
-    ResultsError naming the file: forces.csv finite at strictly increasing times; shapes.npz
-    with the shape samples of those times (output.shape_interval), the head's bristles and
-    the model's nodes at increasing times, and, where the run kept them
-    (output.solution_file), rows of the head's coordinates at the shape samples; tips.npz with every
-    time and bristle. (Finite real values in the .npz files: files.read_npz.) The sizes are
-    compared before any work that grows with them: a run.json may claim any head. Results
-    saved from Python without parameters claim no run: only their files are compared."""
+    """``results`` if every array read fits what run.json says the run was (:class:`_Claims`),
+    else ResultsError naming the file: forces.csv finite at strictly increasing times;
+    shapes.npz with the shape samples of those times (output.shape_interval), the head's
+    bristles and the model's nodes, and, where the run kept them (output.solution_file),
+    rows of the head's coordinates at the shape samples; tips.npz with every time and
+    bristle. (Finite 64-bit floats within 1e20 in the .npz files: files.read_npz.) The
+    sizes are compared before any work that grows with them: a run.json may claim any
+    head."""
     from exubrush.util.tables import check_time_axis
 
-    steps, wrench = results.time.size, results.wrench
-    columns = [getattr(results, name) for name in _SERIES]  # time first
+    wrench = results.wrench
+    series = [getattr(results, name) for name in _SERIES]  # time first
     if wrench is not None:
-        columns += [wrench.force, wrench.moment, wrench.head_force, wrench.head_moment]
+        series += [wrench.force, wrench.moment, wrench.head_force, wrench.head_moment]
+    forces = str(directory / "forces.csv")
     try:
-        check_time_axis(*columns)
+        check_time_axis(*series)
     except ValueError as err:
-        raise ResultsError(f"{str(directory / 'forces.csv')!r}: {err}{REMAKE}") from None
-    if max(float(np.max(np.abs(c))) for c in columns) > MAGNITUDE[1]:
-        raise ResultsError(f"{str(directory / 'forces.csv')!r}: holds a value beyond "
-                           f"{MAGNITUDE[1]:g}, which exubrush never writes{REMAKE}")
-    # claimed by run.json (None: not claimed)
-    bristles = points = samples = stride = kept = columns = None
-    if "parameters" in results.metadata:
+        raise ResultsError(f"{forces!r}: {err}{REMAKE}") from None
+    if max(float(np.max(np.abs(values))) for values in series) > MAGNITUDE[1]:
+        raise ResultsError(f"{forces!r}: holds a value beyond {MAGNITUDE[1]:g}, which "
+                           f"exubrush never writes{REMAKE}")
+    claims = _Claims.of(results, directory)
+    if (directory / "shapes.npz").is_file():
+        _check_shapes(results, directory / "shapes.npz", claims)
+    tips, steps = results.tip_position, results.time.size
+    if tips is not None and not (tips.shape == results.tip_force.shape
+                                 and _fits(tips.shape, (steps, claims.bristles, 3))):
+        raise ResultsError(f"{str(directory / 'tips.npz')!r}: its arrays {tips.shape} and "
+                           f"{results.tip_force.shape} do not fit the {steps} times of "
+                           f"forces.csv and the run's {claims.bristles} bristles: the file is "
+                           "damaged or of another run")
+    return results
+
+
+@dataclass(frozen=True)
+class _Claims:
+    """What run.json says the saved arrays hold (None: not claimed, by results saved from
+    Python without parameters): bristles, points of each (root included), shape samples
+    among forces.csv's times (every ``stride``-th), whether node coordinates were kept and
+    the columns of their rows."""
+
+    bristles: int | None = None
+    points: int | None = None
+    samples: int | None = None
+    stride: int | None = None
+    kept: bool = False
+    columns: int | None = None
+
+    @classmethod
+    def of(cls, results: Results, directory: Path) -> _Claims:
+        if "parameters" not in results.metadata:
+            return cls()
         try:
             case = results.case()
         except ResultsError as err:
             raise ResultsError(f"{str(directory / 'run.json')!r}: {err}") from None
-        bristles, points = case.head.count, case.model.shape_nodes + 1
-        samples, kept = case.output.shape_samples(steps), case.output.solution_file
-        stride = case.output.shape_stride
-        columns = 1 + HANDLE_COORDINATES + bristles * case.model.bristle_coordinates
-    shapes = directory / "shapes.npz"
-    if shapes.is_file():
-        nodes, times = results.shape_nodes, results.shape_time
-        if not _fits(nodes.shape, (None, bristles, points, 3)):
-            raise ResultsError(f"{str(shapes)!r}: holds nodes {nodes.shape}, but its run "
-                               f"(run.json) has {bristles} bristles of {points} nodes{REMAKE}")
-        if not _fits((times.size, len(nodes)), (samples or len(nodes),) * 2):
-            raise ResultsError(f"{str(shapes)!r}: holds {times.size} times and {len(nodes)} "
-                               f"shapes, but the {steps} times of forces.csv make {samples} "
-                               f"shape samples (output.shape_interval){REMAKE}")
-        # forces.csv holds 9 significant digits: its times are within 5e-9 of the shapes'
-        if samples is not None and not np.allclose(times, results.time[::stride], rtol=1e-8,
-                                                   atol=0.0):
-            raise ResultsError(f"{str(shapes)!r}: its times are not every {stride}th time of "
-                               f"forces.csv (output.shape_interval){REMAKE}")
-        coordinates = results.shape_coordinates
-        if coordinates is None and kept:
-            raise ResultsError(f"{str(shapes)!r} lacks the node coordinates its run kept "
+        bristles, output = case.head.count, case.output
+        return cls(bristles, case.model.shape_nodes + 1,
+                   output.shape_samples(results.time.size), output.shape_stride,
+                   output.solution_file,
+                   1 + HANDLE_COORDINATES + bristles * case.model.bristle_coordinates)
+
+
+def _check_shapes(results: Results, path: Path, claims: _Claims) -> None:
+    """shapes.npz against forces.csv and run.json (see :func:`_checked`)."""
+    from exubrush.util.tables import check_time_axis
+
+    name, nodes, times = str(path), results.shape_nodes, results.shape_time
+    if not _fits(nodes.shape, (None, claims.bristles, claims.points, 3)):
+        raise ResultsError(f"{name!r}: holds nodes {nodes.shape}, but its run (run.json) has "
+                           f"{claims.bristles} bristles of {claims.points} nodes{REMAKE}")
+    if not _fits((times.size, len(nodes)), (claims.samples or len(nodes),) * 2):
+        raise ResultsError(f"{name!r}: holds {times.size} times and {len(nodes)} shapes, but "
+                           f"the {results.time.size} times of forces.csv make "
+                           f"{claims.samples} shape samples (output.shape_interval){REMAKE}")
+    try:
+        check_time_axis(times)
+    except ValueError as err:
+        raise ResultsError(f"{name!r}: {err}{REMAKE}") from None
+    # forces.csv holds 9 significant digits: its times are within 5e-9 of the shapes'
+    if claims.stride is not None and not np.allclose(times, results.time[::claims.stride],
+                                                     rtol=1e-8, atol=0.0):
+        raise ResultsError(f"{name!r}: its times are not every {claims.stride}th time of "
+                           f"forces.csv (output.shape_interval){REMAKE}")
+    coordinates = results.shape_coordinates
+    if coordinates is None:
+        if claims.kept:
+            raise ResultsError(f"{name!r} lacks the node coordinates its run kept "
                                f"(output.solution_file){REMAKE}")
-        # a row per shape sample; a run that did not complete may end a sample early (the
-        # rows kept of its shortest group, exubrush.run.solve)
-        least = times.size if results.metadata.get("status") == "completed" else 1
-        if coordinates is not None and not (
-                least <= len(coordinates) <= times.size
-                and _fits(coordinates.shape[1:], (columns,)) and coordinates.shape[1] >= 2):
-            raise ResultsError(f"{str(shapes)!r}: its node coordinates {coordinates.shape} are "
-                               f"not rows of {columns or 'time and'} coordinates at its "
-                               f"{times.size} times{REMAKE}")
-        try:
-            check_time_axis(times)
-        except ValueError as err:
-            raise ResultsError(f"{str(shapes)!r}: {err}{REMAKE}") from None
-        # both are multiples of output.interval computed apart: equal to rounding (1e-16)
-        if coordinates is not None and not np.allclose(
-                coordinates[:, 0], times[:len(coordinates)], rtol=1e-9, atol=1e-12):
-            raise ResultsError(f"{str(shapes)!r}: its node coordinates are not at its shapes' "
-                               f"times{REMAKE}")
-    tips, forces = results.tip_position, results.tip_force
-    if tips is not None and not (tips.shape == forces.shape
-                                 and _fits(tips.shape, (steps, bristles, 3))):
-        raise ResultsError(f"{str(directory / 'tips.npz')!r}: its arrays {tips.shape} and "
-                           f"{forces.shape} do not fit the {steps} times of forces.csv and "
-                           f"the run's {bristles} bristles: the file is damaged or of "
-                           "another run")
-    return results
+        return
+    # a row per shape sample; a run that did not complete may end a sample early (the rows
+    # kept of its shortest group, exubrush.run.solve)
+    least = times.size if results.metadata.get("status") == "completed" else 1
+    if not (least <= len(coordinates) <= times.size and coordinates.shape[1] >= 2
+            and _fits(coordinates.shape[1:], (claims.columns,))):
+        raise ResultsError(f"{name!r}: its node coordinates {coordinates.shape} are not rows "
+                           f"of {claims.columns or 'time and'} coordinates at its "
+                           f"{times.size} times{REMAKE}")
+    # both are multiples of output.interval computed apart: equal to rounding (1e-16)
+    if not np.allclose(coordinates[:, 0], times[:len(coordinates)], rtol=1e-9, atol=1e-12):
+        raise ResultsError(f"{name!r}: its node coordinates are not at its shapes' "
+                           f"times{REMAKE}")
 
 
 def _fits(shape: tuple, expected: tuple) -> bool:
