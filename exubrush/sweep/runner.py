@@ -106,8 +106,8 @@ def sweep_identity(plan: SweepPlan, prepared: list[PreparedCase]) -> dict:
 
 
 def _changed_inputs(stored: dict, identity: dict) -> str:
-    """``; RUN's KEY has changed since`` for the first run whose input file the stored
-    record hashes otherwise; empty if none does (or the record holds no hashes)."""
+    """``; KEY of run RUN has other content ...`` for the first run whose input file
+    ``stored`` (sweep.json) hashes otherwise; empty if none does (or it holds no hashes)."""
     before = stored.get("inputs")
     for name, inputs in identity["inputs"].items():
         old = before.get(name) if isinstance(before, dict) else None
