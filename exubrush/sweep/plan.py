@@ -22,7 +22,7 @@ import re
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, get_origin
 
 import numpy as np
 
@@ -223,9 +223,9 @@ def _range_values(spec: dict, annotation: Any, meta: Mapping[str, Any], where: s
 
 def _bounds(spec: dict, annotation: Any, meta: Mapping[str, Any], where: str):
     """from, to (display unit), scale and unit of a range, checked."""
-    if annotation in (bool, int) or meta["unit"] == "text":
-        kind = "whole number" if annotation is int else "choice" if meta["unit"] == "text" \
-            else "true/false"
+    if annotation in (bool, int) or meta["unit"] == "text" or get_origin(annotation) is tuple:
+        kind = ("whole number" if annotation is int else "choice" if meta["unit"] == "text"
+                else "true/false" if annotation is bool else "vector")
         raise SweepError(f"{where}: a {kind} parameter takes a list of values, not a range")
     missing = [k for k in ("from", "to") if k not in spec]
     if missing:

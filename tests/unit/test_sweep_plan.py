@@ -149,6 +149,13 @@ MALFORMED = [
      "'cubic' is not one of linear, log"),
     (SMALL + '[grid]\n"head.rows" = { from = 1, to = 3, count = 3 }\n',
      "a whole number parameter takes a list of values, not a range"),
+    (SMALL + '[grid]\n"motion.pivot" = { from = "0 mm", to = "1 mm", count = 2 }\n',
+     "grid.motion.pivot: a vector parameter takes a list of values, not a range"),
+    (SMALL + '[grid]\n"motion.pivot" = { from = ["0 mm", "0 mm", "0 mm"], '
+             'to = ["1 mm", "1 mm", "1 mm"], count = 2 }\n',
+     "grid.motion.pivot: a vector parameter takes a list of values, not a range"),
+    (SMALL + '[sample]\ncount = 2\n[sample.ranges]\n"motion.pivot" = { from = "0 mm", '
+             'to = "1 mm" }\n', "a vector parameter takes a list of values, not a range"),
     (SMALL + '[sample]\ncount = 0\n[sample.ranges]\n"contact.dynamic_friction" = '
              '{ from = 0.5, to = 0.7 }\n', "sample.count: expected a whole number >= 1"),
     (SMALL + "[sample]\ncount = 3\n", "[sample.ranges] must name at least one parameter"),
