@@ -237,7 +237,7 @@ def sweep(sweep_file, out, scheduler, workers, retry_failed, quiet, example):
         plan = read_sweep(sweep_file)
         prepared = prepare_runs(plan)
         folder = Path(out or default_folder(plan))
-        check_folder(folder, plan)
+        check_folder(folder, plan, prepared)
     except SweepError as err:
         _fail(str(err))
     for warning in sorted({w for case in prepared for w in case.warnings}):
@@ -429,11 +429,10 @@ def view(results_dir, write_only):
     opens Exudyn's renderer with the SolutionViewer dialog on it.
     """
     from exubrush.output.results import ResultsError
-    from exubrush.output.viewer import has_display, open_viewer, prepare, viewer_scene
+    from exubrush.output.viewer import has_display, open_viewer, prepare
 
     try:
-        results, path = prepare(results_dir)
-        scene = viewer_scene(results)  # refuses coordinates that do not fit the head
+        results, scene, path = prepare(results_dir)  # refuses coordinates not of the head
     except ResultsError as err:
         _fail(str(err))
     click.echo(f"written {path} ({len(results.shape_coordinates)} rows)")

@@ -78,10 +78,6 @@ def load_shapes(directory: str | Path) -> RunShapes:
     # the geometry alone: a saved run's slide CSV may be gone, and its motion is not needed
     bristles = head_bristles(case.head)
     nodes = np.array(results.shape_nodes, dtype=float)
-    if nodes.shape[1] != len(bristles):
-        raise ResultsError(f"{str(Path(directory) / 'shapes.npz')!r} holds {nodes.shape[1]} "
-                           f"bristles, the run's head {len(bristles)}: the file is of another "
-                           "run; make the run again (exubrush run with --overwrite)")
     if meta.get("model") == "prb":
         derived = meta.get("derived")
         gamma = derived.get("prb_gamma") if isinstance(derived, dict) else None

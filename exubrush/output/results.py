@@ -22,7 +22,8 @@ from exubrush.output.metrics import friction_coefficient, travelled_distance
 from exubrush.output.tufts import tuft_columns, tuft_forces
 from exubrush.output.vibration import vibration_summary
 from exubrush.parameters.case import Case
-from exubrush.parameters.fields import ParameterError, build
+from exubrush.parameters.fields import MAGNITUDE, ParameterError, build
+from exubrush.run.solution_files import HANDLE_COORDINATES
 from exubrush.util.files import atomic_file, read_npz, write_csv
 from exubrush.world.kinematics import SLIDE_AXES
 from exubrush.world.mesh import MeshError, read_mesh
@@ -286,21 +287,17 @@ class ResultsError(ValueError):
 REMAKE = "; the result directory is damaged: make the run again (exubrush run with --overwrite)"
 
 
-def _kept_coordinates(metadata: dict) -> bool:
-    """Whether the run record says its run kept every node's coordinates."""
-    output = metadata.get("parameters", {})
-    output = output.get("output", {}) if isinstance(output, dict) else {}
-    return isinstance(output, dict) and output.get("solution_file") is True
-
-
 def read_results(directory: str | Path) -> Results:
     """Read a result directory written by :meth:`Results.save` (forces, shapes, run.json).
+
+    Every array read is checked against what run.json says the run was (:func:`_checked`)
+    before anything else is done with it.
 
     Raises
     ------
     ResultsError
-        If the directory or one of its files is missing or unreadable; the message says
-        which and how the directory is made.
+        If the directory or one of its files is missing, unreadable or does not fit the run
+        (one line naming the file and saying how the directory is made).
     """
     from exubrush.util.tables import read_unit_table
 
@@ -334,35 +331,135 @@ def read_results(directory: str | Path) -> Results:
         raise ResultsError(f"{err}{REMAKE}") from None
     if shapes is None:
         shapes = {"time": np.zeros(0), "nodes": np.zeros((0, 0, 0, 3))}
-    elif "coordinates" not in shapes and _kept_coordinates(metadata):
-        raise ResultsError(f"{str(directory / 'shapes.npz')!r} lacks the node coordinates "
-                           f"its run kept (output.solution_file){REMAKE}")
-    nodes = shapes["nodes"]
-    if nodes.shape[0] != shapes["time"].size or nodes.shape[3] != 3:
-        raise ResultsError(f"{str(directory / 'shapes.npz')!r}: its nodes {nodes.shape} do not "
-                           f"fit {shapes['time'].size} times of 3 coordinates: the file is "
-                           "damaged or of another exubrush version")
-    steps = series["time"].size
-    if tips is not None and not (tips["position"].shape == tips["force"].shape
-                                 and tips["force"].shape[::2] == (steps, 3)):
-        raise ResultsError(f"{str(directory / 'tips.npz')!r}: its arrays "
-                           f"{tips['position'].shape} and {tips['force'].shape} do not fit "
-                           f"{steps} times of forces.csv: the file is damaged or of "
-                           "another run")
     wrench = HeadWrench.from_columns(series)
     for name, _ in WRENCH_COLUMNS:  # some but not all of them: not exubrush's file
         if series.pop(name, None) is not None:
             raise ResultsError(f"{str(directory / 'forces.csv')!r} has some of the head's "
                                f"force and moment columns but not all{REMAKE}")
-    return Results(**series, wrench=wrench, shape_time=shapes["time"], shape_nodes=nodes,
-                   shape_coordinates=shapes.get("coordinates"),
-                   tip_position=None if tips is None else tips["position"],
-                   tip_force=None if tips is None else tips["force"], metadata=metadata)
+    return _checked(Results(**series, wrench=wrench, shape_time=shapes["time"],
+                            shape_nodes=shapes["nodes"],
+                            shape_coordinates=shapes.get("coordinates"),
+                            tip_position=None if tips is None else tips["position"],
+                            tip_force=None if tips is None else tips["force"],
+                            metadata=metadata), directory)
+
+
+def _checked(results: Results, directory: Path) -> Results:
+    """``results`` if every array read fits what run.json says the run was (:class:`_Claims`),
+    else ResultsError naming the file: forces.csv finite at strictly increasing times;
+    shapes.npz with the shape samples of those times (output.shape_interval), the head's
+    bristles and the model's nodes, and, where the run kept them (output.solution_file),
+    rows of the head's coordinates at the shape samples; tips.npz with every time and
+    bristle. (Finite 64-bit floats within 1e20 in the .npz files: files.read_npz.) The
+    sizes are compared before any work that grows with them: a run.json may claim any
+    head."""
+    from exubrush.util.tables import check_time_axis
+
+    wrench = results.wrench
+    series = [getattr(results, name) for name in _SERIES]  # time first
+    if wrench is not None:
+        series += [wrench.force, wrench.moment, wrench.head_force, wrench.head_moment]
+    forces = str(directory / "forces.csv")
+    try:
+        check_time_axis(*series)
+    except ValueError as err:
+        raise ResultsError(f"{forces!r}: {err}{REMAKE}") from None
+    if max(float(np.max(np.abs(values))) for values in series) > MAGNITUDE[1]:
+        raise ResultsError(f"{forces!r}: holds a value beyond {MAGNITUDE[1]:g}, which "
+                           f"exubrush never writes{REMAKE}")
+    claims = _Claims.of(results, directory)
+    if (directory / "shapes.npz").is_file():
+        _check_shapes(results, directory / "shapes.npz", claims)
+    tips, steps = results.tip_position, results.time.size
+    if tips is not None and not (tips.shape == results.tip_force.shape
+                                 and _fits(tips.shape, (steps, claims.bristles, 3))):
+        raise ResultsError(f"{str(directory / 'tips.npz')!r}: its arrays {tips.shape} and "
+                           f"{results.tip_force.shape} do not fit the {steps} times of "
+                           f"forces.csv and the run's {claims.bristles} bristles: the file is "
+                           "damaged or of another run")
+    return results
+
+
+@dataclass(frozen=True)
+class _Claims:
+    """What run.json says the saved arrays hold (None: not claimed, by results saved from
+    Python without parameters): bristles, points of each (root included), shape samples
+    among forces.csv's times (every ``stride``-th), whether node coordinates were kept and
+    the columns of their rows."""
+
+    bristles: int | None = None
+    points: int | None = None
+    samples: int | None = None
+    stride: int | None = None
+    kept: bool = False
+    columns: int | None = None
+
+    @classmethod
+    def of(cls, results: Results, directory: Path) -> _Claims:
+        if "parameters" not in results.metadata:
+            return cls()
+        try:
+            case = results.case()
+        except ResultsError as err:
+            raise ResultsError(f"{str(directory / 'run.json')!r}: {err}") from None
+        bristles, output = case.head.count, case.output
+        return cls(bristles, case.model.shape_nodes + 1,
+                   output.shape_samples(results.time.size), output.shape_stride,
+                   output.solution_file,
+                   1 + HANDLE_COORDINATES + bristles * case.model.bristle_coordinates)
+
+
+def _check_shapes(results: Results, path: Path, claims: _Claims) -> None:
+    """shapes.npz against forces.csv and run.json (see :func:`_checked`)."""
+    from exubrush.util.tables import check_time_axis
+
+    name, nodes, times = str(path), results.shape_nodes, results.shape_time
+    if not _fits(nodes.shape, (None, claims.bristles, claims.points, 3)):
+        raise ResultsError(f"{name!r}: holds nodes {nodes.shape}, but its run (run.json) has "
+                           f"{claims.bristles} bristles of {claims.points} nodes{REMAKE}")
+    if not _fits((times.size, len(nodes)), (claims.samples or len(nodes),) * 2):
+        raise ResultsError(f"{name!r}: holds {times.size} times and {len(nodes)} shapes, but "
+                           f"the {results.time.size} times of forces.csv make "
+                           f"{claims.samples} shape samples (output.shape_interval){REMAKE}")
+    try:
+        check_time_axis(times)
+    except ValueError as err:
+        raise ResultsError(f"{name!r}: {err}{REMAKE}") from None
+    # forces.csv holds 9 significant digits: its times are within 5e-9 of the shapes'
+    if claims.stride is not None and not np.allclose(times, results.time[::claims.stride],
+                                                     rtol=1e-8, atol=0.0):
+        raise ResultsError(f"{name!r}: its times are not every {claims.stride}th time of "
+                           f"forces.csv (output.shape_interval){REMAKE}")
+    coordinates = results.shape_coordinates
+    if coordinates is None:
+        if claims.kept:
+            raise ResultsError(f"{name!r} lacks the node coordinates its run kept "
+                               f"(output.solution_file){REMAKE}")
+        return
+    # a row per shape sample; a run that did not complete may end a sample early (the rows
+    # kept of its shortest group, exubrush.run.solve)
+    least = times.size if results.metadata.get("status") == "completed" else 1
+    if not (least <= len(coordinates) <= times.size and coordinates.shape[1] >= 2
+            and _fits(coordinates.shape[1:], (claims.columns,))):
+        raise ResultsError(f"{name!r}: its node coordinates {coordinates.shape} are not rows "
+                           f"of {claims.columns or 'time and'} coordinates at its "
+                           f"{times.size} times{REMAKE}")
+    # both are multiples of output.interval computed apart: equal to rounding (1e-16)
+    if not np.allclose(coordinates[:, 0], times[:len(coordinates)], rtol=1e-9, atol=1e-12):
+        raise ResultsError(f"{name!r}: its node coordinates are not at its shapes' "
+                           f"times{REMAKE}")
+
+
+def _fits(shape: tuple, expected: tuple) -> bool:
+    """Whether ``shape`` is ``expected``, whose None entries fit any size."""
+    return len(shape) == len(expected) and all(
+        e is None or s == e for s, e in zip(shape, expected, strict=True))
 
 
 def _read_arrays(path: Path, required, optional=None) -> dict[str, np.ndarray] | None:
-    """The arrays of a result's .npz file (files.read_npz), None if there is no such file."""
-    return read_npz(path, required, optional) if path.is_file() else None
+    """The arrays of a result's .npz file (files.read_npz), None if there is no such file;
+    no value beyond the magnitudes exubrush computes with (parameters.fields.MAGNITUDE)."""
+    return read_npz(path, required, optional, MAGNITUDE[1]) if path.is_file() else None
 
 
 _SERIES = ("time", "slider_position", "normal_force", "tangential_force", "head_height")

@@ -12,6 +12,7 @@ from __future__ import annotations
 import os
 import sys
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -33,20 +34,24 @@ def viewer_scene(results: Results):
     size = scene.mbs.systemData.ODE2Size()
     stored = results.shape_coordinates.shape[1] - 1
     if size != stored:
-        raise ResultsError(f"the run kept {stored} coordinates per row but its head has "
-                           f"{size}: was it made by another exubrush version?")
+        raise ResultsError(f"the run's shapes.npz holds {stored} node coordinates per row "
+                           f"but its head has {size}: was it made by another exubrush "
+                           "version?")
     return scene
 
 
-def prepare(directory: str | Path) -> tuple[Results, Path]:
-    """Read a run that kept its coordinates and write its Exudyn solution file beside it."""
+def prepare(directory: str | Path) -> tuple[Results, Any, Path]:
+    """Read a run that kept its coordinates, build its head (:func:`viewer_scene`, which
+    refuses coordinates that do not fit it), and only then write its Exudyn solution file
+    beside it: a refused run gets no file. Returns the results, the scene and the file."""
     results = read_results(directory)
     if results.shape_coordinates is None:
         raise ResultsError(f"{str(directory)!r} kept no node coordinates: run the case again "
                            "with --viewer (or --set output.solution_file=true)")
+    scene = viewer_scene(results)
     path = Path(directory) / SOLUTION_FILE
     write_solution_file(path, results.shape_coordinates, str(directory))
-    return results, path
+    return results, scene, path
 
 
 def has_display() -> bool:

@@ -425,6 +425,19 @@ class Model(Parameters):
             return self.rotation
         return "rotation-vector" if self.kind == "prb" else "euler-parameters"
 
+    @property
+    def shape_nodes(self) -> int:
+        """Nodes of a bristle the solve stores in its shapes, the root not counted: the
+        DFM's ``segments`` bodies, the PRB link [-]."""
+        return self.segments if self.kind == "dfm" else 1
+
+    @property
+    def bristle_coordinates(self) -> int:
+        """ODE2 coordinates of one bristle in its Exudyn system, as a run keeps them for
+        the viewer (output.solution_file): per node 3 of position and 4 Euler parameters
+        or 3 rotation-vector components (:attr:`node_rotation`) [-]."""
+        return self.shape_nodes * (7 if self.node_rotation == "euler-parameters" else 6)
+
 
 POSE_AXES = ("x", "y", "z", "rx", "ry", "rz")  # exubrush.world.pose.AXES (a test keeps them equal)
 

@@ -101,7 +101,6 @@ def assemble_results(prepared: PreparedCase, solutions: Sequence[GroupSolution |
             moment = moment + carried[1]
         wrench = HeadWrench(force=force, moment=moment, head_force=in_head_frame(force, angles),
                             head_moment=in_head_frame(moment, angles))
-    nodes_per_bristle = case.model.segments if case.model.kind == "dfm" else 1
     # the groups' bristles joined, then put back in the head's order (groups that can
     # touch each other need not be contiguous ranges)
     order = np.argsort(np.concatenate(prepared.groups))
@@ -109,7 +108,7 @@ def assemble_results(prepared: PreparedCase, solutions: Sequence[GroupSolution |
             else np.zeros((0, len(prepared.bristles), 3)))
     rows = np.arange(0, n, case.output.shape_stride)  # the groups' shape samples
     nodes = (np.concatenate([s.nodes[:len(rows)] for s in solutions], axis=1)[:, order] if n
-             else np.zeros((0, len(prepared.bristles), nodes_per_bristle, 3)))
+             else np.zeros((0, len(prepared.bristles), case.model.shape_nodes, 3)))
     tip_force = (np.concatenate([s.tip_force[:n] for s in solutions], axis=1)[:, order] if n
                  else np.zeros((0, len(prepared.bristles), 3)))
     completed = (not facts.interrupted and len(ran) == len(solutions)

@@ -21,8 +21,10 @@ loses at most the groups in progress.
 from __future__ import annotations
 
 import dataclasses
+import functools
 import hashlib
 import json
+import math
 import re
 import shutil
 from pathlib import Path
@@ -30,10 +32,11 @@ from pathlib import Path
 import numpy as np
 
 from exubrush.output.results import RESULT_FILES as SAVED_FILES
-from exubrush.parameters.fields import to_plain
+from exubrush.parameters.fields import MAGNITUDE, to_plain
 from exubrush.run.prepared import PreparedCase
+from exubrush.run.sanity import within_bound
 from exubrush.run.solution import GroupSolution
-from exubrush.run.solution_files import SOLUTION_FILE
+from exubrush.run.solution_files import HANDLE_COORDINATES, SOLUTION_FILE
 from exubrush.util.files import DamagedFile, atomic_file, read_npz
 from exubrush.util.provenance import code_identity
 
@@ -131,14 +134,23 @@ def _describe(code: dict | None) -> str:
 
 class RunDirectory:
     """Checks and prepares ``path`` for a run of ``prepared``; stores and reloads finished
-    groups."""
+    groups. ``afresh`` ends a refusal of a damaged or foreign checkpoint: how the caller's
+    user starts the run afresh (a sweep has no --overwrite)."""
 
-    def __init__(self, path: str | Path, prepared: PreparedCase, overwrite: bool = False):
+    def __init__(self, path: str | Path, prepared: PreparedCase, overwrite: bool = False,
+                 afresh: str = "pass --overwrite to start afresh"):
         self.path = Path(path)
+        self.afresh = afresh  # how the caller's user starts the run afresh (messages)
         self.checkpoint = self.path / CHECKPOINT
         self.fingerprint = case_fingerprint(prepared)
         self.group_sizes = [len(group) for group in prepared.groups]
+        # each group's bound given its handles' mass, as its solve checked it
+        self.bounds = [functools.partial(prepared.group_bound, group)
+                       for group in prepared.groups]
         self.output = prepared.case.output
+        self.shape_nodes = prepared.case.model.shape_nodes
+        self.bristle_coordinates = prepared.case.model.bristle_coordinates
+        self.end_time = prepared.motion.end_time
         self.code = code_identity()
         self.resumed = 0
         self._prepare(overwrite)
@@ -186,11 +198,10 @@ class RunDirectory:
             stored = json.loads(path.read_text(encoding="utf-8")) if path.is_file() else None
         except (OSError, ValueError) as err:  # ValueError: not UTF-8 text, not JSON
             raise RunDirectoryError(f"--out {self.path}: {path} cannot be read ({err}): the "
-                                    "checkpoint is damaged; pass --overwrite to start "
-                                    "afresh") from None
+                                    f"checkpoint is damaged; {self.afresh}") from None
         if stored is not None and not isinstance(stored, dict):
             raise RunDirectoryError(f"--out {self.path}: {path} is not the record exubrush "
-                                    "writes; pass --overwrite to start afresh")
+                                    f"writes; {self.afresh}")
         same = stored is not None and stored.get("exubrush") == self.code["exubrush"] and (
             None in (stored.get("commit"), self.code["commit"])
             or stored.get("commit") == self.code["commit"])
@@ -198,7 +209,7 @@ class RunDirectory:
             raise RunDirectoryError(
                 f"--out {self.path}: its checkpoint was written by {_describe(stored)}, this "
                 f"is {_describe(self.code)}; resuming would mix bristles solved by two "
-                "versions of the code: pass --overwrite to start afresh")
+                f"versions of the code: {self.afresh}")
 
     def _stored_fingerprint(self) -> str | None:
         path = self.checkpoint / "fingerprint"
@@ -206,8 +217,7 @@ class RunDirectory:
             return path.read_text(encoding="utf-8").strip() if path.is_file() else None
         except (OSError, UnicodeDecodeError) as err:
             raise RunDirectoryError(f"--out {self.path}: {path} cannot be read ({err}): the "
-                                    "checkpoint is damaged; pass --overwrite to start "
-                                    "afresh") from None
+                                    f"checkpoint is damaged; {self.afresh}") from None
 
     def _finished_run(self) -> bool:
         return recorded_status(self.path) == "completed"
@@ -228,7 +238,7 @@ class RunDirectory:
             except (DamagedFile, GroupFileError) as err:
                 raise RunDirectoryError(
                     f"--out {self.path}: {err}; delete that file to solve its bristle group "
-                    "again, or pass --overwrite to start afresh") from None
+                    f"again, or {self.afresh}") from None
         return groups
 
     def _group_index(self, file: Path) -> int:
@@ -240,7 +250,8 @@ class RunDirectory:
 
     def _read_group(self, file: Path) -> GroupSolution:
         arrays = read_npz(file, {"scalars": None, "time": 1, "reaction": 2, "tips": 3,
-                                 "nodes": 4, "tip_force": 3}, {"coordinates": 2, "drive_moment": 2})
+                                 "nodes": 4, "tip_force": 3}, {"coordinates": 2, "drive_moment": 2},
+                          MAGNITUDE[1])  # no value beyond what exubrush computes with
         if arrays["scalars"].dtype.kind != "U" or arrays["scalars"].ndim != 0:
             raise GroupFileError(f"{str(file)!r}: its 'scalars' are not one text")
         try:
@@ -256,12 +267,59 @@ class RunDirectory:
         if not (solution.reaction.shape == (steps, 3)
                 and (moment is None or moment.shape == (steps, 3))
                 and solution.tips.shape == (steps, bristles, 3)
-                and solution.nodes.shape[:2] == (shapes, bristles)
-                and solution.nodes.shape[3] == 3
+                and solution.nodes.shape == (shapes, bristles, self.shape_nodes, 3)
                 and solution.tip_force.shape == (steps, bristles, 3)):
             raise GroupFileError(f"{str(file)!r}: its arrays do not fit {steps} times of "
-                                 f"{bristles} bristles: the file is of another run")
+                                 f"{bristles} bristles of {self.shape_nodes} nodes: the file "
+                                 "is of another run")
+        self._check_sane(file, solution)
+        self._check_coordinates(file, solution, shapes, bristles)
         return solution
+
+    def _check_coordinates(self, file: Path, solution: GroupSolution, shapes: int,
+                           bristles: int) -> None:
+        """Node coordinates where the run keeps them (output.solution_file), and only
+        there: a row (time, the handle's coordinates, each bristle's) at each shape
+        sample."""
+        coordinates = solution.coordinates
+        kept = self.output.solution_file
+        if (coordinates is None) == kept:
+            raise GroupFileError(f"{str(file)!r}: " + (
+                "lacks the node coordinates its run keeps (output.solution_file)" if kept
+                else "holds node coordinates, but its run keeps none (output.solution_file)"))
+        if coordinates is None:
+            return
+        columns = 1 + HANDLE_COORDINATES + bristles * self.bristle_coordinates
+        times = solution.time[::self.output.shape_stride]
+        # both are multiples of an output interval computed apart: equal to rounding
+        if not (coordinates.shape == (shapes, columns)
+                and np.allclose(coordinates[:, 0], times, rtol=1e-9, atol=1e-12)):
+            raise GroupFileError(f"{str(file)!r}: its node coordinates {coordinates.shape} are "
+                                 f"not a row of {columns} (time, handle, {bristles} bristles) "
+                                 f"at each of its {shapes} shape samples: the file is of "
+                                 "another run")
+
+    def _check_sane(self, file: Path, solution: GroupSolution) -> None:
+        """The checks a fresh solve passes before its group is kept (exubrush.run.solve):
+        it reached the end, on the output grid (the multiples of output.interval), and its
+        normal force stays within the group's physical bound (finiteness: files.read_npz)."""
+        bound = self.bounds[self._group_index(file)](solution.handle_mass)
+        if not solution.completed:
+            raise GroupFileError(f"{str(file)!r}: says its solve did not finish; exubrush "
+                                 "keeps finished groups only")
+        interval, times = self.output.interval, solution.time
+        if not (times.size and np.array_equal(times, np.arange(times.size) * interval)
+                and times[-1] >= self.end_time - interval):
+            raise GroupFileError(f"{str(file)!r}: its times are not those of a finished solve "
+                                 f"(every output.interval = {interval:g} s from 0 to the run's "
+                                 f"end, {self.end_time:g} s)")
+        sane = within_bound(solution.reaction, bound)
+        if not sane.all():
+            k = int(np.argmin(sane))
+            raise GroupFileError(f"{str(file)!r}: its normal force "
+                                 f"{abs(solution.reaction[k, 2]):.4g} N at t = "
+                                 f"{solution.time[k]:.6g} s exceeds the group's physical bound "
+                                 f"{bound:.4g} N, which a solve never keeps")
 
     def keep(self, index: int, solution: GroupSolution) -> None:
         """Store a finished group atomically (temporary file, then rename)."""
@@ -274,19 +332,23 @@ class RunDirectory:
 
 
 def _plain_scalars(solution: GroupSolution) -> bool:
-    """Whether a group read back has the scalar types it was written with."""
-    numbers = [getattr(solution, f.name) for f in dataclasses.fields(solution)
-               if f.name not in (*solution.ARRAYS, "statistics", "completed", "message",
-                                 "handle_inertia", "retried")]
-    numbers += list(dataclasses.astuple(solution.statistics))
+    """Whether a group read back has the scalars a solve writes: of the types written,
+    finite (JSON lets NaN and Infinity through), the counts, times and sizes not negative
+    and the handle's mass positive (a NaN mass made every head force empty)."""
+    counts = [getattr(solution, f.name) for f in dataclasses.fields(solution)
+              if f.name not in (*solution.ARRAYS, "statistics", "completed", "message",
+                                "handle_inertia", "retried")]
+    counts += list(dataclasses.astuple(solution.statistics))
     inertia = solution.handle_inertia
     if not (isinstance(inertia, list) and len(inertia) == 3
             and all(isinstance(row, list) and len(row) == 3 for row in inertia)):
         return False
-    numbers += [n for row in inertia for n in row]
+    numbers = [*counts, *(n for row in inertia for n in row)]
     return (isinstance(solution.completed, bool) and isinstance(solution.retried, bool)
             and isinstance(solution.message, str)
-            and all(isinstance(n, int | float) and not isinstance(n, bool) for n in numbers))
+            and all(isinstance(n, int | float) and not isinstance(n, bool)
+                    and math.isfinite(n) for n in numbers)
+            and min(counts) >= 0 and solution.handle_mass > 0.0)
 
 
 def _temporaries(names: set[str]) -> set[str]:

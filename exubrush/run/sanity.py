@@ -23,6 +23,8 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
+import numpy as np
+
 from exubrush.models.geometry import BristleGeometry, can_reach
 from exubrush.parameters.case import Case
 
@@ -63,6 +65,13 @@ def inertia_allowance(mass: float, peak_acceleration: float) -> float:
     """What a drive's reaction may carry beyond the contact forces [N]: INERTIA_FACTOR
     times ``mass`` [t] at ``peak_acceleration`` [mm/s²] (see module docstring)."""
     return INERTIA_FACTOR * mass * peak_acceleration
+
+
+def within_bound(reaction: np.ndarray, bound: float) -> np.ndarray:
+    """Per sample, whether the normal force of a drive's ``reaction`` (n, 3) [N], its z
+    component, is within the physical ``bound`` [N] (a NaN counts as within: finiteness is
+    checked apart, and told apart in the message)."""
+    return np.abs(np.nan_to_num(reaction[:, 2])) <= bound
 
 
 def beyond_bound_message(model: str, t: float, force: float, bound: float) -> str:

@@ -21,7 +21,7 @@ import numpy as np
 from exubrush.contact.tip_force import force_on_tip
 from exubrush.run.newton import LineSearch
 from exubrush.run.prepared import PreparedCase
-from exubrush.run.sanity import beyond_bound_message
+from exubrush.run.sanity import beyond_bound_message, within_bound
 from exubrush.run.scene import Scene, build_scene
 from exubrush.run.solution import INTERRUPTED, GroupSolution, SolverStatistics
 from exubrush.run.solution_files import read_coordinate_file
@@ -198,7 +198,7 @@ def solve_once(prepared: PreparedCase, selection: tuple[int, ...],
                                                  sensor.compiled)
     reaction = np.column_stack([d[:n, 1] for d in drive]) if n else np.zeros((0, 3))
     finite = np.all(np.isfinite(reaction), axis=1) & np.all(np.isfinite(nodes), axis=(0, 1, 3))
-    sane = finite & (np.abs(np.nan_to_num(reaction[:, 2])) <= bound)
+    sane = finite & within_bound(reaction, bound)
     if not sane.all():  # never pass a diverged or unphysical sample on as data
         n = int(np.argmin(sane))
         completed = False

@@ -15,7 +15,6 @@ file, the key and what to write instead.
 
 from __future__ import annotations
 
-import hashlib
 import itertools
 import json
 import math
@@ -23,13 +22,13 @@ import re
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, get_origin
 
 import numpy as np
 
 from exubrush.parameters.case import Case
 from exubrush.parameters.catalogue import BUILT_IN_CASES
-from exubrush.parameters.fields import ParameterError, build, describe_key, to_plain
+from exubrush.parameters.fields import ParameterError, build, describe_key
 from exubrush.parameters.io import load_case, read_toml
 from exubrush.sweep.settings import Execution, SweepSettings
 from exubrush.util.units import UnitError, convert, to_internal
@@ -87,12 +86,6 @@ class SweepPlan:
     swept: tuple[Swept, ...]
     runs: tuple[SweepRun, ...]
     execution: Execution
-
-    def fingerprint(self) -> str:
-        """Hash of every run's name and complete parameters: equal means the same sweep."""
-        text = json.dumps([[run.name, to_plain(run.case)] for run in self.runs],
-                          sort_keys=True)
-        return hashlib.sha256(text.encode()).hexdigest()[:16]
 
 
 def read_sweep(path: str | Path) -> SweepPlan:
@@ -230,9 +223,9 @@ def _range_values(spec: dict, annotation: Any, meta: Mapping[str, Any], where: s
 
 def _bounds(spec: dict, annotation: Any, meta: Mapping[str, Any], where: str):
     """from, to (display unit), scale and unit of a range, checked."""
-    if annotation in (bool, int) or meta["unit"] == "text":
-        kind = "whole number" if annotation is int else "choice" if meta["unit"] == "text" \
-            else "true/false"
+    if annotation in (bool, int) or meta["unit"] == "text" or get_origin(annotation) is tuple:
+        kind = ("whole number" if annotation is int else "choice" if meta["unit"] == "text"
+                else "true/false" if annotation is bool else "vector")
         raise SweepError(f"{where}: a {kind} parameter takes a list of values, not a range")
     missing = [k for k in ("from", "to") if k not in spec]
     if missing:
@@ -336,15 +329,21 @@ def run_name(number: int, values: list[tuple[str, Any]]) -> str:
     and value (units are in summary.csv), only letters, digits and ``.=_-``."""
     parts = [f"{number:03d}"]
     for key, value in values:
-        shown = value
-        if isinstance(value, str):
-            number_part = value.split(" ")[0]
-            try:
-                shown = f"{float(number_part):.{NAME_VALUE_DIGITS}g}"
-            except ValueError:
-                shown = value
-        elif isinstance(value, float):
-            shown = f"{value:.{NAME_VALUE_DIGITS}g}"
+        shown = ("_".join(_name_value(v) for v in value) if isinstance(value, list)
+                 else _name_value(value))  # a vector (motion.pivot): its components
         parts.append(f"{key.split('.')[-1]}={shown}")
     return re.sub(r"[^A-Za-z0-9.=_-]", "_", "-".join(parts))[:120]
+
+
+def _name_value(value: Any) -> str:
+    """A value as a run's name shows it: a number (of a quantity) to 4 digits, without
+    its unit; anything else as it is."""
+    if isinstance(value, str):
+        try:
+            return f"{float(value.split(' ')[0]):.{NAME_VALUE_DIGITS}g}"
+        except ValueError:
+            return value
+    if isinstance(value, float):
+        return f"{value:.{NAME_VALUE_DIGITS}g}"
+    return str(value)
 

@@ -18,6 +18,7 @@ that finished.
 
 from __future__ import annotations
 
+import hashlib
 import json
 import math
 import time
@@ -35,6 +36,7 @@ from exubrush.run.assemble import RunFacts, assemble_results
 from exubrush.run.prepared import PreparedCase, prepare
 from exubrush.run.rundir import (
     RunDirectory,
+    case_fingerprint,
     recorded_status,
     run_record,
     safe_name,
@@ -91,9 +93,35 @@ def default_folder(plan: SweepPlan) -> Path:
     return Path("results") / "sweeps" / safe_name(plan.name)
 
 
-def check_folder(folder: Path, plan: SweepPlan) -> None:
-    """Refuse (SweepError) a folder that is a file, holds another sweep, or holds files
-    this sweep does not write. Writes nothing."""
+def sweep_identity(plan: SweepPlan, prepared: list[PreparedCase]) -> dict:
+    """What makes two sweeps the same: every run's name and identity as a single run's
+    resume knows it (exubrush.run.rundir.case_fingerprint: its parameters but the limits,
+    and the data read from every input file, e.g. a pose CSV, a mesh), hashed in
+    ``fingerprint``; ``inputs`` keeps each run's input-file hashes, to say which changed."""
+    runs = [[run.name, case_fingerprint(case)] for run, case in zip(plan.runs, prepared,
+                                                                    strict=True)]
+    return {"fingerprint": hashlib.sha256(json.dumps(runs).encode()).hexdigest()[:16],
+            "inputs": {run.name: dict(case.inputs) for run, case in zip(plan.runs, prepared,
+                                                                       strict=True)}}
+
+
+def _changed_inputs(stored: dict, identity: dict) -> str:
+    """``; KEY of run RUN has other content ...`` for the first run whose input file
+    ``stored`` (sweep.json) hashes otherwise; empty if none does (or it holds no hashes)."""
+    before = stored.get("inputs")
+    for name, inputs in identity["inputs"].items():
+        old = before.get(name) if isinstance(before, dict) else None
+        changed = [key for key, digest in inputs.items()
+                   if isinstance(old, dict) and old.get(key) not in (None, digest)]
+        if changed:
+            return f"; {changed[0]} of run {name} has other content than when it was solved"
+    return ""
+
+
+def check_folder(folder: Path, plan: SweepPlan, prepared: list[PreparedCase]) -> None:
+    """Refuse (SweepError) a folder that is a file, holds another sweep (or this one with
+    other parameters or input files: :func:`sweep_identity`), or holds files this sweep
+    does not write. Writes nothing."""
     reason = unusable_directory(folder)
     if reason:
         raise SweepError(f"--out {folder}: {reason}")
@@ -103,13 +131,17 @@ def check_folder(folder: Path, plan: SweepPlan) -> None:
         raise SweepError(f"--out {folder}: holds files that are not an exubrush sweep "
                          f"({', '.join(sorted(present)[:3])}); choose a new or empty directory")
     if record.is_file():
+        identity = sweep_identity(plan, prepared)
         try:
-            stored = json.loads(record.read_text()).get("fingerprint")
+            stored = json.loads(record.read_text())
         except (OSError, ValueError):
             stored = None
-        if stored != plan.fingerprint():
-            raise SweepError(f"--out {folder}: holds another sweep (or this sweep file was "
-                             "changed since); sweeps never share a folder: choose another --out")
+        stored = stored if isinstance(stored, dict) else {}
+        if stored.get("fingerprint") != identity["fingerprint"]:
+            raise SweepError(f"--out {folder}: holds another sweep (or this sweep file, or a "
+                             "file its runs read, was changed since"
+                             f"{_changed_inputs(stored, identity)}); sweeps never share a "
+                             "folder: choose another --out")
     ours = {SWEEP_FILE, *SUMMARY_FILES, *(run.name for run in plan.runs)}
     foreign = sorted(n for n in present - ours
                      if not (n.startswith("summary-") and n.endswith(".png"))
@@ -137,12 +169,12 @@ def _check_run_folder(directory: Path) -> None:
             raise SweepError(f"{str(err).removesuffix(REMAKE)}{remake}") from None
 
 
-def claim_folder(folder: Path, plan: SweepPlan) -> None:
+def claim_folder(folder: Path, plan: SweepPlan, prepared: list[PreparedCase]) -> None:
     """:func:`check_folder`, then mark the folder as this sweep's (sweep.json)."""
-    check_folder(folder, plan)
+    check_folder(folder, plan, prepared)
     folder.mkdir(parents=True, exist_ok=True)
     with atomic_file(folder / SWEEP_FILE, "w") as handle:
-        json.dump({"name": plan.name, "fingerprint": plan.fingerprint(),
+        json.dump({"name": plan.name, **sweep_identity(plan, prepared),
                    "sweep_file": str(plan.source), "runs": [r.name for r in plan.runs]},
                   handle, indent=2)
 
@@ -170,7 +202,7 @@ def run_sweep(plan: SweepPlan, folder: str | Path, executor: Executor,
     """
     folder = Path(folder)
     prepared = prepared if prepared is not None else prepare_runs(plan)
-    claim_folder(folder, plan)
+    claim_folder(folder, plan, prepared)
     states = [RunState(run, case, folder / run.name) for run, case in zip(plan.runs, prepared,
                                                                           strict=True)]
     tasks, skipped = [], 0
@@ -179,7 +211,8 @@ def run_sweep(plan: SweepPlan, folder: str | Path, executor: Executor,
         if recorded == "completed" or (recorded == "failed" and not retry_failed):
             state.status, skipped = recorded, skipped + 1
             continue
-        state.store = RunDirectory(state.folder, state.prepared, overwrite=False)
+        state.store = RunDirectory(state.folder, state.prepared, overwrite=False,
+                                   afresh=f"delete {state.folder} to solve that run anew")
         stored = state.store.stored_groups()
         state.solutions = [stored.get(i) for i in range(len(state.prepared.groups))]
         state.returned = len(stored)
@@ -243,10 +276,15 @@ def _value_columns(plan: SweepPlan) -> list[str]:
 
 
 def _case_value(case, key: str, unit: str):
-    """The value of dotted ``key`` in ``case``, in ``unit`` (the sweep file's)."""
+    """The value of dotted ``key`` in ``case``, in ``unit`` (the sweep file's): a number or
+    a text as it is, a vector (e.g. motion.pivot) as the text ``[x, y, z]`` of its
+    components in ``unit``, so that every cell of summary.csv is one value."""
     value = case
     for part in key.split("."):
         value = getattr(value, part)
+    if isinstance(value, tuple | list):
+        _, meta = describe_key(Case, key)
+        return json.dumps([convert(v, meta["unit"], unit) if unit else v for v in value])
     if not unit or isinstance(value, str):
         return value
     _, meta = describe_key(Case, key)

@@ -69,18 +69,22 @@ _NPZ_FAULTS = (OSError, ValueError, EOFError, KeyError, zipfile.BadZipFile, zlib
 
 
 def read_npz(path: str | Path, required: Mapping[str, int | None],
-             optional: Mapping[str, int | None] | None = None) -> dict[str, np.ndarray]:
+             optional: Mapping[str, int | None] | None = None,
+             largest: float = math.inf) -> dict[str, np.ndarray]:
     """The arrays of an ``.npz`` archive (numpy.savez), each read whole.
 
     ``required`` and ``optional`` map each array's name to its number of dimensions, or to
     None for an array of any shape and type; an array with a number of dimensions must
-    hold numbers (or booleans). Pickled objects are never loaded.
+    hold finite 64-bit floats, as exubrush writes them (numpy would cast booleans,
+    integers, complex numbers and shorter floats without a word, and with them values
+    exubrush never wrote), none of magnitude beyond ``largest``. Pickled objects are never
+    loaded.
 
     Raises
     ------
     DamagedFile
         Naming the file and what is wrong: not an .npz archive, truncated or corrupted, an
-        array missing or of the wrong kind.
+        array missing, of the wrong kind, or holding a value that is not finite.
     """
     path = Path(path)
     name = repr(str(path))
@@ -104,8 +108,13 @@ def read_npz(path: str | Path, required: Mapping[str, int | None],
         dimensions = {**optional, **required}[key]
         if dimensions is None:
             continue
-        numeric = np.issubdtype(array.dtype, np.number) or array.dtype == bool
-        if array.ndim != dimensions or not numeric:
+        if array.ndim != dimensions or array.dtype != np.float64:
             raise DamagedFile(f"{name}: array {key!r} is {array.ndim}-dimensional "
-                              f"{array.dtype}, not {dimensions}-dimensional numbers")
+                              f"{array.dtype}, not {dimensions}-dimensional float64")
+        if not np.all(np.isfinite(array)):
+            raise DamagedFile(f"{name}: array {key!r} holds a value that is not finite "
+                              "(NaN or infinite), which exubrush never writes")
+        if array.size and np.max(np.abs(array)) > largest:
+            raise DamagedFile(f"{name}: array {key!r} holds a value beyond {largest:g}, "
+                              "which exubrush never writes")
     return arrays

@@ -166,10 +166,18 @@ def test_a_resumed_group_keeps_the_coordinates_for_the_viewer(tmp_path):
     from exubrush.run.solution import GroupSolution, SolverStatistics
 
     case = prepare(load_case("orthogonal", ["output.solution_file=true"]))
+    # a finished solve's times: every output interval from 0 to the run's end
+    interval = case.case.output.interval
+    steps = round(case.motion.end_time / interval) + 1
+    time = np.arange(steps) * interval
+    shapes = case.case.output.shape_samples(steps)
+    # rows (time, the handle's 6 coordinates, the bristle's 6 nodes of 7)
+    coordinates = np.column_stack([time[::case.case.output.shape_stride],
+                                   np.arange(48.0 * shapes).reshape(shapes, 48)])
     solution = GroupSolution(
-        time=np.arange(3.0), reaction=np.zeros((3, 3)), tips=np.full((3, 1, 3), 2.0),
-        nodes=np.zeros((1, 1, 6, 3)), tip_force=np.ones((3, 1, 3)),
-        coordinates=np.arange(12.0).reshape(3, 4),
+        time=time, reaction=np.zeros((steps, 3)),
+        tips=np.full((steps, 1, 3), 2.0), nodes=np.zeros((shapes, 1, 6, 3)),
+        tip_force=np.ones((steps, 1, 3)), coordinates=coordinates,
         statistics=SolverStatistics(steps=7),
         completed=True, message="", wall_time=0.5, contacts=1, handle_mass=1e-6)
     RunDirectory(tmp_path, case).keep(0, solution)

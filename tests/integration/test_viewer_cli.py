@@ -83,3 +83,23 @@ def test_a_solution_file_of_any_length_reads_back(tmp_path, rows):
     read = read_coordinate_file(tmp_path / "solution.txt")
     assert read.shape[0] == rows
     np.testing.assert_array_equal(read.reshape(written.shape), written)
+
+
+@pytest.mark.parametrize("model", [
+    ["model.kind='dfm'"], ["model.kind='dfm'", "model.rotation='rotation-vector'"],
+    ["model.kind='prb'"], ["model.kind='prb'", "model.rotation='euler-parameters'"],
+    ["model.kind='prb'", "model.prb_link='rigid'"], ["model.kind='prb'", "model.prb_pivot='joint'"],
+])
+def test_the_coordinates_a_saved_run_is_checked_for_are_those_of_its_head(model):
+    """Model.bristle_coordinates, which read_results and a resume check the kept node
+    coordinates against without building the head, counts what Exudyn's system holds."""
+    from exubrush.parameters.io import load_case
+    from exubrush.run.prepared import prepare
+    from exubrush.run.scene import build_scene
+    from exubrush.run.solution_files import HANDLE_COORDINATES
+
+    prepared = prepare(load_case("orthogonal", ["head.rows=1", "head.columns=3",
+                                                "model.segments=3", *model]))
+    scene = build_scene(prepared)
+    per_bristle = prepared.case.model.bristle_coordinates
+    assert scene.mbs.systemData.ODE2Size() == HANDLE_COORDINATES + 3 * per_bristle

@@ -12,7 +12,9 @@ from exubrush.parameters.io import load_case
 
 def _saved_run(directory, model):
     """A two-bristle run of ``model`` whose tips swing sideways (made-up shapes)."""
-    case = load_case("orthogonal", ["head.rows=1", "head.columns=2", f"model.kind={model}"])
+    # a shape at every force sample, three DFM segments: as the run.json says
+    case = load_case("orthogonal", ["head.rows=1", "head.columns=2", f"model.kind={model}",
+                                    "model.segments=3", "output.interval='0.1 s'"])
     time = np.linspace(0.0, 1.0, 11)
     nodes_per_bristle = 1 if model == "prb" else 3
     roots = np.array([[-0.9, 0.0, 4.0], [0.9, 0.0, 4.0]])

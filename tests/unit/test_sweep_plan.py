@@ -89,12 +89,20 @@ def test_run_names_stay_one_safe_directory_name():
     assert "/" not in name and " " not in name
 
 
-def test_the_same_file_gives_the_same_fingerprint_and_a_change_another(tmp_path):
+def test_the_same_file_gives_the_same_identity_and_a_change_another(tmp_path):
+    from exubrush.sweep.runner import prepare_runs, sweep_identity
+
+    def identity(text, name):
+        plan = read_sweep(write(tmp_path, text, name))
+        return sweep_identity(plan, prepare_runs(plan))["fingerprint"]
+
     text = SMALL + '[grid]\n"head.seed" = [1, 2]\n'
-    first = read_sweep(write(tmp_path, text, "a.toml")).fingerprint()
-    assert read_sweep(write(tmp_path, text, "b.toml")).fingerprint() == first
-    changed = read_sweep(write(tmp_path, text.replace("0.2", "0.3"), "c.toml")).fingerprint()
-    assert changed != first
+    first = identity(text, "a.toml")
+    assert identity(text, "b.toml") == first
+    assert identity(text.replace("0.2", "0.3"), "c.toml") != first
+    # the limits change no result: a single run resumes after one is raised, so does a sweep
+    assert identity(text.replace("]\n[grid]", ', "limits.bristles=500"]\n[grid]'),
+                    "d.toml") == first
 
 
 def test_the_printed_example_is_a_valid_sweep(tmp_path):
@@ -145,6 +153,13 @@ MALFORMED = [
      "'cubic' is not one of linear, log"),
     (SMALL + '[grid]\n"head.rows" = { from = 1, to = 3, count = 3 }\n',
      "a whole number parameter takes a list of values, not a range"),
+    (SMALL + '[grid]\n"motion.pivot" = { from = "0 mm", to = "1 mm", count = 2 }\n',
+     "grid.motion.pivot: a vector parameter takes a list of values, not a range"),
+    (SMALL + '[grid]\n"motion.pivot" = { from = ["0 mm", "0 mm", "0 mm"], '
+             'to = ["1 mm", "1 mm", "1 mm"], count = 2 }\n',
+     "grid.motion.pivot: a vector parameter takes a list of values, not a range"),
+    (SMALL + '[sample]\ncount = 2\n[sample.ranges]\n"motion.pivot" = { from = "0 mm", '
+             'to = "1 mm" }\n', "a vector parameter takes a list of values, not a range"),
     (SMALL + '[sample]\ncount = 0\n[sample.ranges]\n"contact.dynamic_friction" = '
              '{ from = 0.5, to = 0.7 }\n', "sample.count: expected a whole number >= 1"),
     (SMALL + "[sample]\ncount = 3\n", "[sample.ranges] must name at least one parameter"),
