@@ -55,6 +55,23 @@ def test_a_tuft_that_cannot_reach_runs_beside_one_that_can(two_tufts):
     assert meta["sanity"]["groups_stopped_beyond_bound"] == []
 
 
+def test_a_tuft_that_cannot_reach_resumes_as_it_solved(two_tufts, tmp_path):
+    """A resumed group is held to the bound its solve checked: the short tuft's is its
+    inertia allowance alone (a contact bound of 0 N; its handle pushed 1.7e-17 N at t = 0,
+    which the contact bound alone refused on resuming)."""
+    from exubrush.run.rundir import RunDirectory
+
+    first = simulate(two_tufts, progress=False, workers=1,
+                     directory=RunDirectory(tmp_path / "run", two_tufts))
+    assert first.metadata["status"] == "completed", first.metadata["message"]
+    sanity = first.metadata["sanity"]
+    again = simulate(two_tufts, progress=False, workers=1,
+                     directory=RunDirectory(tmp_path / "run", two_tufts))
+    assert again.metadata["status"] == "completed", again.metadata["message"]
+    assert again.metadata["sanity"] == sanity
+    np.testing.assert_array_equal(again.normal_force, first.normal_force)
+
+
 def test_a_group_stopped_beyond_its_bound_is_reported_honestly(two_tufts):
     # with a hundredth of the inertia allowance (a tenth of the handle's peak m a) the short
     # tuft's handle trips its bound early in the approach, as the bare 0 N bound did before
