@@ -20,13 +20,11 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+from exubrush.parameters.choices import MESH_UNITS, POSE_AXES, SECTION_SHAPES
 from exubrush.parameters.fields import Parameters, param
 from exubrush.parameters.surface_kinds import SURFACE_KINDS
 
 CONTACT_BACKENDS = ("paper-symbolic", "paper-python", "paper-compiled", "exudyn-builtin")
-# the shapes exubrush.models.sections implements (a test keeps the two lists equal; the
-# parameters do not import the models)
-SECTION_SHAPES = ("rectangle", "ellipse", "circle")
 
 
 @dataclass(frozen=True)
@@ -315,10 +313,6 @@ class ContactLaw(Parameters):
             )
 
 
-# the units exubrush.world.mesh reads (a test keeps the two lists equal)
-MESH_UNITS = ("mm", "cm", "m", "um", "in")
-
-
 @dataclass(frozen=True)
 class Surface(Parameters):
     """The rigid surface the tips brush (exubrush.world.surfaces).
@@ -349,7 +343,7 @@ class Surface(Parameters):
     mesh_file: str = param("", "mesh: STL or OBJ file of the surface (relative to the case "
                                 "file)", "text")
     mesh_unit: str = param("mm", "mesh: unit of the file's coordinates", "text",
-                           choices=MESH_UNITS)
+                           choices=tuple(MESH_UNITS))
     x: float = param(0.0, "position of the surface's top along the head's long axis", "mm")
     y: float = param(0.0, "position of the surface's top across the head", "mm")
     yaw: float = param(0.0, "rotation of the surface about Z (0: its x along the head's "
@@ -437,9 +431,6 @@ class Model(Parameters):
         the viewer (output.solution_file): per node 3 of position and 4 Euler parameters
         or 3 rotation-vector components (:attr:`node_rotation`) [-]."""
         return self.shape_nodes * (7 if self.node_rotation == "euler-parameters" else 6)
-
-
-POSE_AXES = ("x", "y", "z", "rx", "ry", "rz")  # exubrush.world.pose.AXES (a test keeps them equal)
 
 
 @dataclass(frozen=True)
