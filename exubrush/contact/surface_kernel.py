@@ -18,8 +18,11 @@ from typing import Any
 import numpy as np
 from numba import njit
 
+from exubrush.parameters import surface_kinds as kinds
+
 PLANE, CYLINDER, SPHERE, TOOTH_ROW = 0, 1, 2, 3
-_KINDS = {"plane": PLANE, "cylinder": CYLINDER, "sphere": SPHERE, "tooth-row": TOOTH_ROW}
+_KINDS = {kinds.PLANE: PLANE, kinds.CYLINDER: CYLINDER, kinds.SPHERE: SPHERE,
+          kinds.TOOTH_ROW: TOOTH_ROW}
 _TINY = 1e-300  # as exubrush.world.surfaces
 MAX_FEATURES = 3
 _JIT: dict[str, Any] = {"cache": True, "error_model": "numpy", "nogil": True}
