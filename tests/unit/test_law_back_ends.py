@@ -7,8 +7,8 @@ fields by name (surface_kernel.LAW_FIELDS). The law between filaments exists onl
 (exubrush.contact.between_kernel), in a force kernel and a derivative kernel. One test per
 law holds every back end to the same values and derivatives, at the band edges of the
 friction (v_s, v_d; the soft depth and v_r between filaments), at zero slip and at zero
-depth. A new back end or law is one more entry here (docs/architecture.md, "Adding a
-contact law").
+depth. A new back end or law is one more entry here (docs/architecture.md, "Contact laws:
+one definition each, and adding one").
 """
 
 import itertools
@@ -153,7 +153,7 @@ def test_every_back_end_of_the_tip_law_gives_its_values_and_derivatives(law, lag
     assert touched > 50  # most states press the sphere in
 
 
-def test_the_compiled_tip_law_reads_each_field_by_its_name():
+def test_the_compiled_laws_read_each_field_by_its_name():
     # every field of the law, and only those, each where its name says
     law = ContactLaw(stiffness=101.0, stiffness_exponent=1.31, damping=0.21,
                      damping_rate_exponent=1.01, damping_depth_exponent=2.01,
