@@ -32,6 +32,7 @@ import numpy as np
 
 from exubrush.contact.between_kernel import (  # noqa: F401  (the law's constants)
     JOINT_TIE,
+    LAW_FIELDS,
     PARALLEL,
     SOFT_DEPTH,
     pairs_forces,
@@ -42,9 +43,9 @@ from exubrush.util.pair_search import pairs_within
 
 
 def law_vector(law: BristleContactLaw) -> np.ndarray:
-    """The law's numbers as the kernels take them: stiffness [N/mm], damping [N·s/mm],
-    friction coefficient, friction velocity [mm/s]."""
-    return np.array([law.stiffness, law.damping, law.friction, law.friction_velocity], float)
+    """The law's numbers as the kernels take them (between_kernel.LAW_FIELDS): stiffness
+    [N/mm], damping [N·s/mm], friction coefficient, friction velocity [mm/s]."""
+    return np.array([getattr(law, name) for name in LAW_FIELDS], float)
 
 
 @dataclass(frozen=True)

@@ -56,6 +56,13 @@ VELOCITY_STEP = 1e-5
 
 _JIT: dict[str, Any] = {"cache": True, "error_model": "numpy", "nogil": True}
 
+# The law array the kernels take (exubrush.contact.between.law_vector): the
+# BristleContactLaw field of each entry, and the entry's index by name, which the kernel
+# reads (``law[FRICTION]``, numba folds the module's integers into constants). A new
+# parameter of the law is one name in each list.
+LAW_FIELDS = ("stiffness", "damping", "friction", "friction_velocity")
+STIFFNESS, DAMPING, FRICTION, FRICTION_VELOCITY = range(len(LAW_FIELDS))
+
 
 @njit(inline="always")
 def _clip01(value):
@@ -195,7 +202,8 @@ def _law(law, soft, overlap, nx, ny, nz, rx, ry, rz):
     """The force [N] on the second segment of a contact of ``overlap`` [mm] > 0 along the
     unit normal n, the second's velocity relative to the first being r [mm/s]: a penalty
     with zero slope at first touch, damping that never pulls, regularised friction."""
-    stiffness, damping, friction, friction_velocity = law[0], law[1], law[2], law[3]
+    stiffness, damping = law[STIFFNESS], law[DAMPING]
+    friction, friction_velocity = law[FRICTION], law[FRICTION_VELOCITY]
     approach = nx * rx + ny * ry + nz * rz
     if overlap < soft:
         elastic = stiffness * 0.5 * overlap * overlap / soft
@@ -229,7 +237,7 @@ def pair_force(x, v, radius_a, radius_b, inner, far, law, out):
     overlap [mm] (negative: a gap). exubrush.contact.between.pair_corner_forces says
     where the force acts; ``inner`` (4,) whether each corner is a joint with the chain's
     next segment, ``far`` (4, 3) those neighbours' other ends (a's before and after, then
-    b's); ``law`` = (stiffness, damping, friction, friction velocity)."""
+    b's); ``law`` the law array (LAW_FIELDS)."""
     s0, t0, s1, t1, s2, t2, crossing = segment_contact(x)
     reach = radius_a + radius_b
     soft = SOFT_DEPTH * reach

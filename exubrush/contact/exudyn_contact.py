@@ -37,6 +37,7 @@ from exubrush.contact.laws import (
 )
 from exubrush.models.assembly import rigid_marker
 from exubrush.parameters.case import ContactLaw, Surface
+from exubrush.parameters.surface_kinds import PLANE
 from exubrush.util.float_math import FLOAT_MATH
 from exubrush.world.surfaces import features, orientation
 
@@ -100,7 +101,7 @@ def contact_user_function(
         scale = 1.0
         if friction_window is not None:
             scale = cubic_step(t, friction_window[0], 0.0, friction_window[1], 1.0, math_backend)
-        if surface is None or surface.kind == "plane":
+        if surface is None or surface.kind == PLANE:
             load = sphere_plane_force(law, radius, displacement, velocity, angularVelocity,
                                       math_backend, scale, offset[0] if lagged else None)
         else:

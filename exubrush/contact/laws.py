@@ -34,6 +34,7 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING
 
+from exubrush.parameters.surface_kinds import PLANE
 from exubrush.util.float_math import FLOAT_MATH
 from exubrush.world.surfaces import Choice, features, taken
 
@@ -251,7 +252,7 @@ def drop_ratios(law: ContactLaw, radius: float, surface: Surface | None, centre,
     numbers the force functions take as ``drop`` / ``drops`` when a step lags the drop.
     The slip is the force law's own (:func:`plane_slip`, :func:`feature_slip`), whether
     the sphere touches or not; on the plane it does not depend on ``centre``."""
-    if surface is None or surface.kind == "plane":
+    if surface is None or surface.kind == PLANE:
         slip_x, slip_y = plane_slip(radius, velocity, omega)
         return [friction_drop(law, math.sqrt(slip_x * slip_x + slip_y * slip_y + 1e-12))]
     return [friction_drop(law, _slip_speed(radius, taken(feature).normal, velocity, omega))

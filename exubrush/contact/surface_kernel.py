@@ -18,20 +18,30 @@ from typing import Any
 import numpy as np
 from numba import njit
 
+from exubrush.parameters import surface_kinds as kinds
+
 PLANE, CYLINDER, SPHERE, TOOTH_ROW = 0, 1, 2, 3
-_KINDS = {"plane": PLANE, "cylinder": CYLINDER, "sphere": SPHERE, "tooth-row": TOOTH_ROW}
+_KINDS = {kinds.PLANE: PLANE, kinds.CYLINDER: CYLINDER, kinds.SPHERE: SPHERE,
+          kinds.TOOTH_ROW: TOOTH_ROW}
 _TINY = 1e-300  # as exubrush.world.surfaces
 MAX_FEATURES = 3
 _JIT: dict[str, Any] = {"cache": True, "error_model": "numpy", "nogil": True}
 
 
+# The law array the kernel takes (law_numbers): the ContactLaw field of each entry, and the
+# entry's index by name, which the kernel reads (``law[STATIC_FRICTION]``, numba folds the
+# module's integers into constants). A new parameter of the law is one name in each list.
+LAW_FIELDS = ("stiffness", "stiffness_exponent", "damping", "damping_rate_exponent",
+              "damping_depth_exponent", "static_friction", "dynamic_friction",
+              "static_velocity", "dynamic_velocity")
+(STIFFNESS, STIFFNESS_EXPONENT, DAMPING, DAMPING_RATE_EXPONENT, DAMPING_DEPTH_EXPONENT,
+ STATIC_FRICTION, DYNAMIC_FRICTION, STATIC_VELOCITY, DYNAMIC_VELOCITY) = range(len(LAW_FIELDS))
+
+
 def law_numbers(law) -> np.ndarray:
-    """The law's parameters in the order the kernel takes them: k, m1, c, m2, m3, μ_s,
-    μ_d, v_s, v_d."""
-    return np.array([law.stiffness, law.stiffness_exponent, law.damping,
-                     law.damping_rate_exponent, law.damping_depth_exponent,
-                     law.static_friction, law.dynamic_friction, law.static_velocity,
-                     law.dynamic_velocity], float)
+    """The law's parameters (a ContactLaw's, mm-N-s) as the kernel takes them:
+    ``law_numbers(law)[STATIC_FRICTION] == law.static_friction`` for each of LAW_FIELDS."""
+    return np.array([getattr(law, name) for name in LAW_FIELDS], float)
 
 
 def surface_numbers(surface) -> tuple[int, np.ndarray]:
@@ -49,15 +59,17 @@ def surface_numbers(surface) -> tuple[int, np.ndarray]:
 def _normal_force(law, penetration, rate):
     depth = max(penetration, 0.0)
     sign = 1.0 if rate > 0.0 else (-1.0 if rate < 0.0 else 0.0)
-    elastic = law[0] * depth ** law[1]
-    dissipative = law[2] * sign * abs(rate) ** law[3] * depth ** law[4]
+    elastic = law[STIFFNESS] * depth ** law[STIFFNESS_EXPONENT]
+    dissipative = (law[DAMPING] * sign * abs(rate) ** law[DAMPING_RATE_EXPONENT]
+                   * depth ** law[DAMPING_DEPTH_EXPONENT])
     return max(elastic + dissipative, 0.0)
 
 
 @njit(**_JIT)
 def _friction_per_speed(law, slip_square, drop):
     """μ(v)/v of exubrush.contact.laws.friction_per_speed; ``drop`` < 0: not lagged."""
-    mu_s, mu_d, vs, vd = law[5], law[6], law[7], law[8]
+    mu_s, mu_d = law[STATIC_FRICTION], law[DYNAMIC_FRICTION]
+    vs, vd = law[STATIC_VELOCITY], law[DYNAMIC_VELOCITY]
     creeping = mu_s / vs * (1.5 - 0.5 / (vs * vs) * slip_square)
     speed = math.sqrt(max(slip_square, vs * vs))
     if drop >= 0.0:

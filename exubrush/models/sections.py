@@ -15,7 +15,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-SHAPES = ("rectangle", "ellipse", "circle")
+from exubrush.parameters.choices import SECTION_SHAPES
 
 
 @dataclass(frozen=True)
@@ -70,8 +70,9 @@ def section_properties(shape: str, width: float, height: float) -> SectionProper
     width, height : float
         Full extent of the section along y and z [mm].
     """
-    if shape not in SHAPES:
-        raise ValueError(f"unknown section shape {shape!r}; use one of {', '.join(SHAPES)}")
+    if shape not in SECTION_SHAPES:
+        raise ValueError(f"unknown section shape {shape!r}; use one of "
+                         f"{', '.join(SECTION_SHAPES)}")
     if width <= 0 or height <= 0:
         raise ValueError(f"section width and height must be positive, got {width}, {height}")
     b, h = width, height

@@ -33,6 +33,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from exubrush.output.metrics import NO_CONTACT_FORCE
+from exubrush.parameters.surface_kinds import TOOTH_ROW
 from exubrush.util.float_math import ARRAY_MATH
 from exubrush.world.surfaces import (
     features,
@@ -49,7 +50,7 @@ if TYPE_CHECKING:
 # mm: side of a wiped-area cell, a fifth of the patch width of a default tip pressed in by
 # 2.5 µm (about 0.1 N: 2·√(2·0.4·0.0025) = 0.09 mm)
 DEFAULT_GRID = 0.02
-PARTS = {"tooth-row": ("top", "edge", "wall", "floor")}
+PARTS = {TOOTH_ROW: ("top", "edge", "wall", "floor")}
 
 
 def part_names(surface: Surface) -> tuple[str, ...]:
@@ -151,7 +152,7 @@ def sample_durations(time) -> np.ndarray:
 
 
 def _parts(surface: Surface, points: np.ndarray) -> np.ndarray:
-    if surface.kind != "tooth-row":
+    if surface.kind != TOOTH_ROW:
         return np.zeros(len(points), dtype=int)
     u = np.abs(fold(surface, points[:, 0], ARRAY_MATH))
     z = points[:, 2]
@@ -298,7 +299,7 @@ def cleaning_summary(surface: Surface, time, slider_position, tip_position, tip_
             for k, name in enumerate(names)},
         "strokes": [],
     }
-    teeth = surface.kind == "tooth-row"
+    teeth = surface.kind == TOOTH_ROW
     if teeth:
         local = to_surface_frame(surface, tip_position)
         depth, gap, inside = gap_depths(surface, local, radius)

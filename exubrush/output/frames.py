@@ -18,6 +18,7 @@ import numpy as np
 
 from exubrush.output.results import ResultsError, read_results
 from exubrush.parameters.case import BristleContactLaw, Surface
+from exubrush.parameters.surface_kinds import MESH
 from exubrush.util.files import atomic_file
 from exubrush.world.mesh import MeshError, MeshSurface
 from exubrush.world.surfaces import height, to_surface_frame
@@ -164,7 +165,7 @@ def _draw_view(axis, run: RunShapes, sample: int, horizontal: int, limits) -> No
     points[:, :2] = run.centre[sample, :2]
     points[:, horizontal] += along
     local = to_surface_frame(run.surface, points)
-    if run.surface.kind != "mesh":
+    if run.surface.kind != MESH:
         profile = height(run.surface, local[:, 0], local[:, 1])
     elif run.mesh is not None:  # the highest triangle over each point of the section
         profile = np.maximum(run.mesh.heights(local[:, :2]), bottom)

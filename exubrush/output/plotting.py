@@ -13,6 +13,7 @@ from exubrush.models.geometry import head_bristles
 from exubrush.output.cleaning import footprint, gap_depth_history
 from exubrush.output.metrics import friction_coefficient, travelled_distance
 from exubrush.output.vibration import ROTATION_PLANES
+from exubrush.parameters.surface_kinds import TOOTH_ROW
 from exubrush.util.files import atomic_file
 
 
@@ -136,7 +137,7 @@ def plot_cleaning(results, summary: dict, contacts, target) -> None:
     case = results.case()
     surface = case.surface
     radius = [b.tip_radius for b in head_bristles(case.head)]
-    teeth = surface.kind == "tooth-row"
+    teeth = surface.kind == TOOTH_ROW
     fig, axes = figure(2, 2, figsize=(11, 8), squeeze=False)
     counts, x_edges, y_edges = footprint(results.time, contacts, cell=0.25)
     image = axes[0][0].pcolormesh(x_edges, y_edges, counts.T, cmap="viridis")

@@ -20,13 +20,11 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+from exubrush.parameters.choices import MESH_UNITS, POSE_AXES, SECTION_SHAPES
 from exubrush.parameters.fields import Parameters, param
-from exubrush.parameters.surface_kinds import SURFACE_KINDS
+from exubrush.parameters.surface_kinds import MESH, PLANE, SURFACE_KINDS, TOOTH_ROW
 
 CONTACT_BACKENDS = ("paper-symbolic", "paper-python", "paper-compiled", "exudyn-builtin")
-# the shapes exubrush.models.sections implements (a test keeps the two lists equal; the
-# parameters do not import the models)
-SECTION_SHAPES = ("rectangle", "ellipse", "circle")
 
 
 @dataclass(frozen=True)
@@ -315,10 +313,6 @@ class ContactLaw(Parameters):
             )
 
 
-# the units exubrush.world.mesh reads (a test keeps the two lists equal)
-MESH_UNITS = ("mm", "cm", "m", "um", "in")
-
-
 @dataclass(frozen=True)
 class Surface(Parameters):
     """The rigid surface the tips brush (exubrush.world.surfaces).
@@ -335,7 +329,7 @@ class Surface(Parameters):
     top stays at Z = 0, so ``motion.interaction_distance`` is measured to it.
     """
 
-    kind: str = param("plane", "surface shape", "text", choices=SURFACE_KINDS)
+    kind: str = param(PLANE, "surface shape", "text", choices=SURFACE_KINDS)
     # below 1 km: the distance √(x² + (z+R)²) − R keeps the µm of a contact's depth (its
     # rounding, R · 2e-16, grows with R; at R = 1e12 mm a run failed on it): use a plane
     radius: float = param(4.0, "cylinder, sphere: radius", "mm", above=0.0, below=1e6)
@@ -349,7 +343,7 @@ class Surface(Parameters):
     mesh_file: str = param("", "mesh: STL or OBJ file of the surface (relative to the case "
                                 "file)", "text")
     mesh_unit: str = param("mm", "mesh: unit of the file's coordinates", "text",
-                           choices=MESH_UNITS)
+                           choices=tuple(MESH_UNITS))
     x: float = param(0.0, "position of the surface's top along the head's long axis", "mm")
     y: float = param(0.0, "position of the surface's top across the head", "mm")
     yaw: float = param(0.0, "rotation of the surface about Z (0: its x along the head's "
@@ -358,9 +352,9 @@ class Surface(Parameters):
 
     def check(self) -> None:
         """A tooth's rounded edges fit in its crown and its gap; a mesh needs a file."""
-        if self.kind == "mesh" and not self.mesh_file:
+        if self.kind == MESH and not self.mesh_file:
             raise ValueError("kind 'mesh' needs mesh_file (an STL or OBJ file)")
-        if self.kind == "tooth-row":
+        if self.kind == TOOTH_ROW:
             if not self.edge_radius < 0.5 * self.tooth_width:
                 raise ValueError(f"edge_radius ({self.edge_radius:g} mm) must be below half "
                                  f"the tooth_width ({self.tooth_width:g} mm)")
@@ -437,9 +431,6 @@ class Model(Parameters):
         the viewer (output.solution_file): per node 3 of position and 4 Euler parameters
         or 3 rotation-vector components (:attr:`node_rotation`) [-]."""
         return self.shape_nodes * (7 if self.node_rotation == "euler-parameters" else 6)
-
-
-POSE_AXES = ("x", "y", "z", "rx", "ry", "rz")  # exubrush.world.pose.AXES (a test keeps them equal)
 
 
 @dataclass(frozen=True)
@@ -772,7 +763,7 @@ class Case(Parameters):
                 f"'exudyn-builtin': with the {self.contact.backend} law Exudyn's threads broke "
                 "Newton or hung; use solver.threads = 1 or the built-in contact"
             )
-        if self.contact.backend == "exudyn-builtin" and self.surface.kind != "plane":
+        if self.contact.backend == "exudyn-builtin" and self.surface.kind != PLANE:
             raise ValueError(
                 f"contact.backend 'exudyn-builtin' brushes a plane only; surface.kind "
                 f"'{self.surface.kind}' needs contact.backend 'paper-symbolic' (or 'paper-python')"

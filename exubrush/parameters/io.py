@@ -20,6 +20,7 @@ from exubrush.parameters.fields import (
     parse_override,
     to_plain,
 )
+from exubrush.parameters.surface_kinds import MESH
 from exubrush.parameters.tuft_table import read_tuft_table
 
 
@@ -75,7 +76,7 @@ def load_case(case: str, overrides: list[str] | tuple[str, ...] = ()) -> Case:
     if built.motion.pose_csv:
         built = replace(built, motion=replace(
             built.motion, pose_csv=_resolved(built.motion.pose_csv, folder)))
-    if built.surface.kind == "mesh":
+    if built.surface.kind == MESH:
         built = replace(built, surface=replace(
             built.surface, mesh_file=_resolved(built.surface.mesh_file, folder)))
     return built

@@ -41,12 +41,15 @@ class SurfaceKind:
     larger_steps: bool
 
 
+# the kinds' names, which the modules that implement a kind compare with (a misspelt name
+# fails at import, a misspelt string never matches)
+PLANE, CYLINDER, SPHERE, TOOTH_ROW, MESH = "plane", "cylinder", "sphere", "tooth-row", "mesh"
 KINDS = (
-    SurfaceKind("plane", plane_law=True, compiled=False, larger_steps=True),
-    SurfaceKind("cylinder", plane_law=False, compiled=True, larger_steps=True),
-    SurfaceKind("sphere", plane_law=False, compiled=True, larger_steps=True),
-    SurfaceKind("tooth-row", plane_law=False, compiled=True, larger_steps=True),
-    SurfaceKind("mesh", plane_law=True, compiled=False, larger_steps=False),
+    SurfaceKind(PLANE, plane_law=True, compiled=False, larger_steps=True),
+    SurfaceKind(CYLINDER, plane_law=False, compiled=True, larger_steps=True),
+    SurfaceKind(SPHERE, plane_law=False, compiled=True, larger_steps=True),
+    SurfaceKind(TOOTH_ROW, plane_law=False, compiled=True, larger_steps=True),
+    SurfaceKind(MESH, plane_law=True, compiled=False, larger_steps=False),
 )
 SURFACE_KIND = {kind.name: kind for kind in KINDS}  # name -> SurfaceKind
 SURFACE_KINDS = tuple(SURFACE_KIND)  # the names, in the order of KINDS

@@ -21,6 +21,7 @@ from exubrush.models.howell import howell_parameters
 from exubrush.models.stiffness import buckling_load
 from exubrush.parameters.case import Case
 from exubrush.parameters.fields import ParameterError
+from exubrush.parameters.surface_kinds import MESH, PLANE
 from exubrush.run.budget import (
     WorkEstimate,
     estimate,
@@ -209,14 +210,14 @@ def prepare(case: Case) -> PreparedCase:
     roots = np.array([b.root for b in bristles])
     _refuse(impossible_pose(case, roots, motion, height))
     mesh = None
-    if case.surface.kind == "mesh":
+    if case.surface.kind == MESH:
         try:
             mesh = read_mesh(case.surface.mesh_file, case.surface.mesh_unit)
         except MeshError as err:
             raise ParameterError(str(err)) from None
     closest = closest_approach(motion, case.motion.direction, height, outermost(roots),
                                case.motion.interaction_distance
-                               ) if case.surface.kind == "plane" else None
+                               ) if case.surface.kind == PLANE else None
     reaching = surface_reach(case, bristles, motion, mesh, closest=closest)
     groups = bristle_groups(case, bristles)
     sources, turns = stand_ins(case, bristles, groups, motion)
@@ -259,13 +260,13 @@ def impossible_pose(case: Case, roots: np.ndarray, motion: HeadMotion,
         return []
     problems = []
     surface = case.surface
-    if surface.kind == "plane":
+    if surface.kind == PLANE:
         roots = outermost(roots)
-    height = None if surface.kind == "plane" else (
+    height = None if surface.kind == PLANE else (
         lambda points: surface_height(surface, *to_surface_frame(surface, points)[:, :2].T))
     try:
         tilt = largest_tilt(motion)
-        crossing = None if surface.kind == "mesh" else lowest_root(
+        crossing = None if surface.kind == MESH else lowest_root(
             motion, case.motion.direction, start_height, roots, height)
     except Unchecked as err:
         return [f"motion: the pose keeps the head's roots within 0.01 mm of the {surface.kind}"
@@ -322,7 +323,7 @@ def surface_reach(case: Case, bristles, motion: HeadMotion, mesh: MeshSurface | 
     sampled yet).
     """
     distance = case.motion.interaction_distance if closest is None else closest
-    if case.surface.kind == "plane":
+    if case.surface.kind == PLANE:
         return tuple(can_reach(b, distance) for b in bristles)
     if motion.pose is not None:  # turned or shaken: every bristle may reach (an upper bound)
         return (True,) * len(bristles)
@@ -433,7 +434,7 @@ def stand_ins(case, bristles, groups, motion) -> tuple[tuple[int, ...], tuple[fl
     twin shifted along the plane). exubrush.run.twins says when each is exact."""
     count = len(groups)
     own = tuple(range(count)), (0.0,) * count
-    if (not case.solver.share_identical or case.surface.kind != "plane"
+    if (not case.solver.share_identical or case.surface.kind != PLANE
             or case.solver.partition != "per-bristle" or case.contact.between_bristles
             or any(len(group) != 1 for group in groups)):
         return own

@@ -33,7 +33,14 @@ from exubrush.models.dfm import add_dfm_bristle
 from exubrush.models.geometry import BristleGeometry
 from exubrush.models.prb import add_prb_bristle, stub_graphics
 from exubrush.models.stiffness import buckling_load
-from exubrush.parameters.surface_kinds import SURFACE_KIND
+from exubrush.parameters.surface_kinds import (
+    CYLINDER,
+    MESH,
+    PLANE,
+    SPHERE,
+    SURFACE_KIND,
+    TOOTH_ROW,
+)
 from exubrush.run.newton import LineSearch, after_step_cut, has_lie_group_nodes
 from exubrush.run.prepared import PreparedCase
 from exubrush.run.solver import (
@@ -213,21 +220,21 @@ def surface_graphics(surface, size: float, mesh=None) -> list:
     turn = orientation(surface)
     top = np.array([surface.x, surface.y, 0.0])
     grey = [0.7, 0.7, 0.7, 1.0]
-    if surface.kind == "mesh":
+    if surface.kind == MESH:
         points = mesh.triangles.reshape(-1, 3) @ turn.T + top
         trigs = np.arange(len(points)).reshape(-1, 3)
         return [graphics.FromPointsAndTrigs(points.tolist(), trigs.tolist(), color=grey)]
-    if surface.kind == "plane":
+    if surface.kind == PLANE:
         return [graphics.CheckerBoard(point=[0.0, 0.0, 0.0], normal=[0.0, 0.0, 1.0], size=size)]
-    if surface.kind == "cylinder":
+    if surface.kind == CYLINDER:
         centre = top + turn @ [0.0, 0.0, -surface.radius]
         axis = turn @ [0.0, size, 0.0]
         return [graphics.Cylinder(pAxis=(centre - 0.5 * axis).tolist(), vAxis=axis.tolist(),
                                   radius=surface.radius, color=grey, nTiles=48)]
-    if surface.kind == "sphere":
+    if surface.kind == SPHERE:
         return [graphics.Sphere(point=(top + [0.0, 0.0, -surface.radius]).tolist(),
                                 radius=surface.radius, color=grey, nTiles=32)]
-    if surface.kind == "tooth-row":
+    if surface.kind == TOOTH_ROW:
         pitch = tooth_pitch(surface)
         drawn = [graphics.CheckerBoard(point=[0.0, 0.0, -surface.gap_depth],
                                        normal=[0.0, 0.0, 1.0], size=size)]
@@ -255,7 +262,7 @@ def _add_contact(scene: Scene, prepared: PreparedCase, surface_marker_number, ti
             parameters["dynamicFriction"] = 0.0  # blended in by a step hook
         return add_builtin_tip_contact(scene.mbs, surface_marker_number, tip_body,
                                        bristle.tip_radius, parameters)
-    if case.surface.kind == "mesh":
+    if case.surface.kind == MESH:
         # far below until the first step puts it on the tangent plane
         surface_marker_number = rigid_marker(scene.mbs, scene.ground, [0.0, 0.0, -1e3])
         scene.tangent_planes.append(TangentPlane(tip_node, surface_marker_number))

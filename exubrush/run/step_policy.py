@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING
 import exudyn as exu
 import numpy as np
 
-from exubrush.parameters.surface_kinds import SURFACE_KIND
+from exubrush.parameters.surface_kinds import SURFACE_KIND, TOOTH_ROW
 from exubrush.run.budget import term_segments
 from exubrush.run.solver import step_cap
 from exubrush.world.surfaces import flat_top_clearance
@@ -55,7 +55,7 @@ def sliding_step_largest(case: Case, motion: HeadMotion, tips: list):
     # changed (it defers the change)
     ahead = (solver.step_recovery_steps + 2) * sliding_step
     clear = None
-    if case.surface.kind == "tooth-row":  # tips snap off its edges into the gaps
+    if case.surface.kind == TOOTH_ROW:  # tips snap off its edges into the gaps
         clear = tips_on_flat_tops(case.surface, tips, ahead, motion.slide.peak_speed)
     fast = motion.sliding_faster_throughout(speed, ahead, solver.step_size)
     pose = motion.pose  # its terms move faster than a slide: never a larger step while on

@@ -23,11 +23,11 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from exubrush.parameters.choices import MESH_UNITS
+
 if TYPE_CHECKING:
     from scipy.spatial import cKDTree
 
-# mm per unit of a mesh file
-MESH_UNITS = {"mm": 1.0, "cm": 10.0, "m": 1000.0, "um": 1e-3, "in": 25.4}
 # a mesh whose extent in mm falls outside this range is almost surely in another unit
 PLAUSIBLE_EXTENT = (0.5, 500.0)  # mm
 

@@ -36,13 +36,13 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from exubrush.parameters.choices import POSE_AXES as AXES
 from exubrush.util.tables import read_unit_table
 from exubrush.world.motion import HeadMotion, TabulatedSlide, smooth_step
 
 if TYPE_CHECKING:
     from exubrush.parameters.case import Motion
 
-AXES = ("x", "y", "z", "rx", "ry", "rz")
 # internal unit of each pose coordinate
 UNITS = {"x": "mm", "y": "mm", "z": "mm", "rx": "rad", "ry": "rad", "rz": "rad"}
 

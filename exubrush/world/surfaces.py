@@ -39,6 +39,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from exubrush.parameters.surface_kinds import CYLINDER, PLANE, SPHERE, TOOTH_ROW
 from exubrush.util.float_math import ARRAY_MATH, FLOAT_MATH
 
 if TYPE_CHECKING:  # only attributes are read: no import at run time
@@ -74,13 +75,13 @@ def features(surface: Surface, point, radius: float, m=FLOAT_MATH) -> list:
     of ``radius`` [mm] centred there can touch: a list of Feature or Choice."""
     x, y, z = point[0], point[1], point[2]
     kind = surface.kind
-    if kind == "plane":
+    if kind == PLANE:
         return [Feature((0.0, 0.0, 1.0), z)]
-    if kind == "cylinder":
+    if kind == CYLINDER:
         return [_round_feature(x, None, z + surface.radius, surface.radius, m)]
-    if kind == "sphere":
+    if kind == SPHERE:
         return [_round_feature(x, y, z + surface.radius, surface.radius, m)]
-    if kind == "tooth-row":
+    if kind == TOOTH_ROW:
         return _tooth_row_features(surface, x, z, radius, m)
     raise ValueError(f"surface kind {kind!r} has no analytic features")
 
@@ -177,13 +178,13 @@ def height(surface: Surface, x, y) -> np.ndarray:
     (−radius beyond a cylinder's or sphere's rim, −gap_depth in a gap), element-wise."""
     x, y = np.broadcast_arrays(np.asarray(x, dtype=float), np.asarray(y, dtype=float))
     kind = surface.kind
-    if kind == "plane":
+    if kind == PLANE:
         return np.zeros_like(x)
-    if kind in ("cylinder", "sphere"):
+    if kind in (CYLINDER, SPHERE):
         r = surface.radius
-        across = x * x if kind == "cylinder" else x * x + y * y
+        across = x * x if kind == CYLINDER else x * x + y * y
         return np.sqrt(np.maximum(r * r - across, 0.0)) - r
-    if kind == "tooth-row":
+    if kind == TOOTH_ROW:
         rho = surface.edge_radius
         a = np.abs(fold(surface, x, ARRAY_MATH)) - (0.5 * surface.tooth_width - rho)
         rounded = np.sqrt(np.maximum(rho * rho - a * a, 0.0)) - rho

@@ -5,11 +5,10 @@ import numpy as np
 import pytest
 import trimesh
 
-from exubrush.parameters.case import MESH_UNITS as PARAMETER_UNITS
 from exubrush.parameters.fields import ParameterError
 from exubrush.parameters.io import load_case
 from exubrush.run.prepared import prepare
-from exubrush.world.mesh import MESH_UNITS, MeshError, frame_with_normal, read_mesh
+from exubrush.world.mesh import MeshError, frame_with_normal, read_mesh
 
 
 @pytest.fixture(scope="module")
@@ -17,10 +16,6 @@ def sphere_file(tmp_path_factory):
     path = tmp_path_factory.mktemp("mesh") / "sphere.stl"
     trimesh.creation.icosphere(subdivisions=3, radius=4.0).export(path)
     return path
-
-
-def test_units_are_the_parameters_units():
-    assert tuple(MESH_UNITS) == PARAMETER_UNITS
 
 
 def test_mesh_is_read_in_its_unit_with_its_top_at_zero(sphere_file):

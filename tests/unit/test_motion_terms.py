@@ -8,7 +8,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from exubrush.parameters.case import POSE_AXES, Case, Motion
+from exubrush.parameters.case import Case, Motion
 from exubrush.parameters.fields import ParameterError, build
 from exubrush.parameters.io import load_case
 from exubrush.run.budget import term_segments, term_steps, term_windows
@@ -16,7 +16,7 @@ from exubrush.run.prepared import prepare
 from exubrush.run.step_policy import term_step_cap
 from exubrush.world.kinematics import handle_angles, handle_coordinates, handle_kinematics
 from exubrush.world.motion import HeadMotion, RestingSlide
-from exubrush.world.pose import AXES, SineTerm, with_pose
+from exubrush.world.pose import SineTerm, with_pose
 
 SONIC = {"axis": "y", "amplitude": "0.3 mm", "frequency": "260 Hz"}
 
@@ -25,10 +25,6 @@ def _case_file(tmp_path, motion_lines, name="posed"):
     path = tmp_path / f"{name}.toml"
     path.write_text("[head]\nrows = 1\ncolumns = 1\n[motion]\n" + motion_lines)
     return str(path)
-
-
-def test_the_parameters_know_the_poses_axes():
-    assert POSE_AXES == AXES
 
 
 def test_a_sine_entry_reads_its_units():
