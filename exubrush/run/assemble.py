@@ -163,6 +163,7 @@ def assemble_results(prepared: PreparedCase, solutions: Sequence[GroupSolution |
         tip_force=tip_force,
         metadata=metadata,
         wrench=wrench,
+        built_case=case,  # what metadata["parameters"] records, without building it again
     )
 
 
