@@ -1,4 +1,6 @@
-"""Results of a brushing run: unit-labelled time series, files on disk, the force plot.
+"""Results of a brushing run: unit-labelled time series, the case they came from and the
+metrics derived from them. Writing them is exubrush.output.result_files, reading a saved
+run back and checking it exubrush.output.saved_run, the plots exubrush.output.plotting.
 
 Sign conventions (what load cells between slider and head read, with the head's own
 inertia removed): ``normal_force`` is positive when the head presses on the surface;
@@ -79,7 +81,9 @@ class Results:
     (exubrush.output.viewer).
 
     ``built_case`` is the :class:`Case` the run solved, kept in memory where one exists (the
-    results of a run just made); None: :meth:`case` builds it from ``metadata`` once.
+    results of a run just made, exubrush.run.assemble); None: :meth:`case` builds it from
+    ``metadata["parameters"]`` once and keeps it (a change to that dict afterwards is not
+    seen).
 
     ``tip_position`` [mm] and ``tip_force`` [N], each (n_t, n_bristles, 3) on ``time``, are
     every tip-sphere centre and the surface's contact force on it, head frame fixed to the
