@@ -294,8 +294,8 @@ class ContactLaw(Parameters):
         "how the contact is computed: paper-symbolic = the paper's law compiled by Exudyn "
         "(C++); paper-python = the same law in Python (slower, same forces); paper-compiled = "
         "the same law compiled with numba with a Jacobian of its own where it is built (tips "
-        "on Euler-parameter nodes, as DFM's, over a cylinder, sphere or tooth row; 2.2x on "
-        "the interdental case), else paper-symbolic; exudyn-builtin = "
+        "on Euler-parameter nodes, as DFM's, over a cylinder, sphere or tooth row; faster: "
+        "docs/decisions/0018), else paper-symbolic; exudyn-builtin = "
         "Exudyn's own sphere-triangle contact with the nearest parameters (one friction "
         "coefficient, linear damping: an approximation, see docs/model.md)",
         "text", choices=CONTACT_BACKENDS,
@@ -373,8 +373,8 @@ class Model(Parameters):
         "auto",
         "rotation coordinates of the bristle bodies: euler-parameters (4 per node and a "
         "constraint), rotation-vector (Exudyn's Lie-group node, 3 per node) or auto (the "
-        "faster one for the model, measured: euler-parameters for DFM, rotation-vector "
-        "for PRB)",
+        "faster one for the model: euler-parameters for DFM, rotation-vector for PRB; "
+        "docs/decisions/0015)",
         "text", choices=("auto", "euler-parameters", "rotation-vector"),
     )
     prb_link: str = param(
@@ -603,10 +603,8 @@ class Solver(Parameters):
                                         "steps (false: a fresh Jacobian every iteration)")
     newton_contractivity: float = param(
         0.5, "modified Newton makes a new Jacobian when an iteration shrinks the residual by "
-             "less than this factor (Exudyn's modifiedNewtonContractivity); 1 made the "
-             "interdental case 9 % faster, but moved the head's mean force by 0.34 % and "
-             "single bristles' by up to 1.4 % "
-             "(docs/decisions/0018)",
+             "less than this factor (Exudyn's modifiedNewtonContractivity); 1 was faster on "
+             "the interdental case but moved the forces (docs/decisions/0018)",
         above=0.0, below=10.0,
     )
     # below 10, one-bristle solves failed at a reversal (docs/decisions/0002, 0007)
@@ -635,7 +633,7 @@ class Solver(Parameters):
     )
     step_recovery_steps: int = param(
         4, "successful steps after a step reduction before the step may grow again (Exudyn's "
-           "default 10; 2 before 0.9.0: through a snap the step grew back and failed again)",
+           "default 10; docs/decisions/0016)",
         minimum=1,
     )
     partition: str = param(
@@ -710,8 +708,8 @@ class Limits(Parameters):
                           "GB", above=0.0)
     term_evaluations: float = param(
         1e7, "most evaluations of the pose terms per solved system: (motion.sine terms + a "
-             "pose table) x time steps; each is evaluated in Python at every step, about "
-             "3 us (docs/runs.md)", above=0.0)
+             "pose table) x time steps; each is evaluated in Python at every step (its cost: "
+             "docs/runs.md)", above=0.0)
 
 
 @dataclass(frozen=True)

@@ -80,11 +80,47 @@ def assemble_results(prepared: PreparedCase, solutions: Sequence[GroupSolution |
     ran = [s for s in solutions if s is not None]
     n = min(len(s.time) for s in ran) if len(ran) == len(solutions) else 0
     t = ran[0].time[:n] if ran else np.zeros(0)
-    position, acceleration = history[0][:n], history[2][:n]
+    handle_position = history[0][:n] + np.array([0.0, 0.0, prepared.start_height])
+    angles = handle_angles(prepared.motion, t)
+    force, wrench = _head_wrench(prepared, ran, n, history[2][:n], angles)
+    # the groups' bristles joined, then put back in the head's order (groups that can
+    # touch each other need not be contiguous ranges)
+    order = np.argsort(np.concatenate(prepared.groups))
+    tips = (np.concatenate([s.tips[:n] for s in solutions], axis=1)[:, order] if n
+            else np.zeros((0, len(prepared.bristles), 3)))
+    rows = np.arange(0, n, case.output.shape_stride)  # the groups' shape samples
+    tip_force = (np.concatenate([s.tip_force[:n] for s in solutions], axis=1)[:, order] if n
+                 else np.zeros((0, len(prepared.bristles), 3)))
+    shape_coordinates = None
+    if case.output.solution_file and n:
+        shape_coordinates = head_coordinates([s.coordinates for s in solutions], order)
+    return Results(
+        time=t,
+        slider_position=np.array([prepared.motion.sliding(ti)[0] for ti in t]),
+        normal_force=-force[:, 2],
+        tangential_force=force @ prepared.slide_axis,
+        head_height=handle_position[:, 2],
+        shape_time=t[rows],
+        shape_nodes=_shape_nodes(prepared, solutions, n, rows, order,
+                                 handle_position[rows], angles[0][rows]),
+        shape_coordinates=shape_coordinates,
+        tip_position=tips,
+        tip_force=tip_force,
+        metadata=_run_record(prepared, solutions, solved, facts, t, force),
+        wrench=wrench,
+        built_case=case,  # what metadata["parameters"] records, without building it again
+    )
+
+
+def _head_wrench(prepared: PreparedCase, ran: list[GroupSolution], n: int,
+                 acceleration: np.ndarray, handle_turn: tuple):
+    """The head's force (n, 3) [N] on the ``n`` samples every group reached, and its
+    :class:`HeadWrench` (None without the drive's moments, as in 0.13.0's checkpoints);
+    ``acceleration`` [mm/s²] and ``handle_turn`` (kinematics.handle_angles) are the
+    handle's there."""
     force = head_force([s.reaction[:n] for s in ran] if n else [],
                        [s.handle_mass for s in ran], acceleration)
-    handle_position = position + np.array([0.0, 0.0, prepared.start_height])
-    angles, rates, turning = handle_angles(prepared.motion, t)
+    angles, rates, turning = handle_turn
     carried = None
     # a head without pose terms leaves its root pieces out: its forces stay bit for bit
     # those of earlier versions; in the default runs the pieces' m a would move them by up
@@ -93,44 +129,51 @@ def assemble_results(prepared: PreparedCase, solutions: Sequence[GroupSolution |
         carried = carried_wrench(carried_root_pieces(prepared), acceleration, angles, rates,
                                  turning)
         force = force + carried[0]
-    wrench = None
-    if n and all(s.drive_moment is not None for s in ran):  # none in 0.13.0's checkpoints
-        moment = head_moment([s.drive_moment[:n] for s in ran],
-                             [np.array(s.handle_inertia) for s in ran], angles, rates, turning)
-        if carried is not None:
-            moment = moment + carried[1]
-        wrench = HeadWrench(force=force, moment=moment, head_force=in_head_frame(force, angles),
-                            head_moment=in_head_frame(moment, angles))
-    # the groups' bristles joined, then put back in the head's order (groups that can
-    # touch each other need not be contiguous ranges)
-    order = np.argsort(np.concatenate(prepared.groups))
-    tips = (np.concatenate([s.tips[:n] for s in solutions], axis=1)[:, order] if n
-            else np.zeros((0, len(prepared.bristles), 3)))
-    rows = np.arange(0, n, case.output.shape_stride)  # the groups' shape samples
+    if not (n and all(s.drive_moment is not None for s in ran)):
+        return force, None
+    moment = head_moment([s.drive_moment[:n] for s in ran],
+                         [np.array(s.handle_inertia) for s in ran], angles, rates, turning)
+    if carried is not None:
+        moment = moment + carried[1]
+    return force, HeadWrench(force=force, moment=moment,
+                             head_force=in_head_frame(force, angles),
+                             head_moment=in_head_frame(moment, angles))
+
+
+def _shape_nodes(prepared: PreparedCase, solutions: Sequence[GroupSolution], n: int,
+                 rows: np.ndarray, order: np.ndarray, handle: np.ndarray,
+                 angles: np.ndarray) -> np.ndarray:
+    """The head's bristles at the shape samples ``rows`` (the handle's node at ``handle``
+    [mm], turned by ``angles``), roots first, in the head's ``order`` [mm]."""
     nodes = (np.concatenate([s.nodes[:len(rows)] for s in solutions], axis=1)[:, order] if n
-             else np.zeros((0, len(prepared.bristles), case.model.shape_nodes, 3)))
-    tip_force = (np.concatenate([s.tip_force[:n] for s in solutions], axis=1)[:, order] if n
-                 else np.zeros((0, len(prepared.bristles), 3)))
+             else np.zeros((0, len(prepared.bristles), prepared.case.model.shape_nodes, 3)))
+    roots = np.array([b.root for b in prepared.bristles])
+    # the roots turn with the head about the handle's node (A r, exubrush.world.pose)
+    if prepared.motion.pose is not None:
+        turned = np.array([roots @ rotation_matrix(theta).T for theta in angles]).reshape(
+            len(rows), *roots.shape)
+    else:
+        turned = roots[None, :, :]
+    return np.concatenate([(handle[:, None, :] + turned)[:, :, None, :], nodes], axis=2)
+
+
+def _run_record(prepared: PreparedCase, solutions: Sequence[GroupSolution | None],
+                solved: list[GroupSolution], facts: RunFacts, t: np.ndarray,
+                force: np.ndarray) -> dict:
+    """The run record (run.json): what was run, by which code, on which references, how it
+    went and why it stopped; ``force`` [N] is the head's on the times ``t`` [s]."""
+    case = prepared.case
+    ran = [s for s in solutions if s is not None]
+    n = len(t)
     completed = (not facts.interrupted and len(ran) == len(solutions)
                  and all(s.completed for s in ran))
     status = "completed" if completed else "interrupted" if facts.interrupted else "failed"
-    roots = np.array([b.root for b in prepared.bristles])
-    # the roots turn with the head about the handle's node (A r, exubrush.world.pose)
-    turned = np.array([roots @ rotation_matrix(theta).T for theta in angles[rows]]).reshape(
-        len(rows), *roots.shape) if prepared.motion.pose is not None else roots[None, :, :]
-    shape_nodes = np.concatenate(
-        [(handle_position[rows][:, None, :] + turned)[:, :, None, :], nodes],
-        axis=2,
-    )
-    shape_coordinates = None
-    if case.output.solution_file and n:
-        shape_coordinates = head_coordinates([s.coordinates for s in solutions], order)
     peak = float(np.max(np.abs(force[:, 2]))) if n else 0.0
     bound = prepared.group_bound(None, sum(s.handle_mass for s in ran))
     # groups stopped beyond their bound: their samples past it are dropped, so the peak
     # above cannot show it
     beyond = [i for i, s in enumerate(solutions) if s is not None and BEYOND_BOUND in s.message]
-    metadata = {
+    return {
         "case": case.name,
         "model": case.model.kind,
         "parameters": to_plain(case),
@@ -150,20 +193,6 @@ def assemble_results(prepared: PreparedCase, solutions: Sequence[GroupSolution |
         "message": "" if completed else stop_message(case, solutions, facts.interrupted),
         "data_origin": "exubrush model output (simulation, not measurement)",
     }
-    return Results(
-        time=t,
-        slider_position=np.array([prepared.motion.sliding(ti)[0] for ti in t]),
-        normal_force=-force[:, 2],
-        tangential_force=force @ prepared.slide_axis,
-        head_height=handle_position[:, 2],
-        shape_time=t[rows],
-        shape_nodes=shape_nodes,
-        shape_coordinates=shape_coordinates,
-        tip_position=tips,
-        tip_force=tip_force,
-        metadata=metadata,
-        wrench=wrench,
-    )
 
 
 def carried_root_pieces(prepared: PreparedCase) -> CarriedLoad:

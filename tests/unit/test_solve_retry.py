@@ -78,3 +78,15 @@ def test_the_retry_reports_no_progress_but_hears_stop_requests(monkeypatch):
     retry_monitor = calls[1][1]
     retry_monitor.advance(1.0)
     assert monitor.advanced == 0.0 and retry_monitor.stop_requested()
+
+
+def test_a_solve_that_needs_no_retry_builds_no_case_for_one(monkeypatch):
+    """The full-Newton case is made only for a retry: each made a checked Case, 48 in a
+    default orthogonal run whose groups all completed (issue 49)."""
+    prepared = prepare(load_case("orthogonal", ["head.rows=1", "head.columns=1"]))
+    made = []
+    monkeypatch.setattr(solve, "full_newton", lambda case: made.append(case))
+    for outcome in (record(4, True), record(4, False, INTERRUPTED)):
+        solves(monkeypatch, [outcome])
+        solve.solve_group(prepared, (0,))
+    assert made == []
