@@ -34,6 +34,7 @@ from exubrush.output.tufts import tuft_columns, tuft_forces
 from exubrush.output.vibration import vibration_summary
 from exubrush.parameters.case import Case
 from exubrush.parameters.fields import ParameterError, build
+from exubrush.parameters.surface_kinds import MESH
 from exubrush.world.kinematics import SLIDE_AXES
 from exubrush.world.mesh import MeshError, read_mesh
 
@@ -192,7 +193,7 @@ class Results:
         """The run's surface mesh (exubrush.world.mesh.MeshSurface) read again from its file, or
         None on an analytic surface; MeshError if the file is gone or unreadable."""
         surface = self.case().surface
-        if surface.kind != "mesh":
+        if surface.kind != MESH:
             return None
         return read_mesh(surface.mesh_file, surface.mesh_unit)
 
