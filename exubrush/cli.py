@@ -94,34 +94,13 @@ def run(case, model, segments, periods, out, overrides, overwrite, quiet, preset
                  f"model.segments={segments}" if segments is not None else None,
                  f"motion.periods={periods}" if periods is not None else None,
                  "output.solution_file=true" if viewer else None]
-    from exubrush.parameters.fields import ParameterError
-    from exubrush.parameters.io import load_case
-    from exubrush.run.prepared import prepare
-    from exubrush.util.units import UnitError
-
-    try:
-        prepared = prepare(load_case(case, [*preset_overrides(preset),
-                                            *filter(None, shortcuts), *overrides]))
-    except (ParameterError, UnitError) as err:
-        _fail(str(err))
-    parameters = prepared.case
-    for warning in prepared.warnings:
-        click.echo(f"exubrush: warning: {warning}", err=True)
-    if prepared.unreachable:
-        click.echo(f"exubrush: warning: {prepared.unreachable} of {len(prepared.bristles)} "
-                   "bristles cannot reach the surface at motion.interaction_distance = "
-                   f"{parameters.motion.interaction_distance:g} mm; they get no contact",
-                   err=True)
-    twins = len(prepared.groups) - len(prepared.solved_groups)
-    if twins:
-        click.echo(f"{len(prepared.solved_groups)} of {len(prepared.groups)} bristle systems to "
-                   f"solve: the other {twins} are twins of those, moving alike along the plane "
-                   "(solver.share_identical)", err=True)
+    prepared = _prepared(case, [*preset_overrides(preset), *filter(None, shortcuts),
+                                *overrides])
     from exubrush.execution.signals import signals_redirected
     from exubrush.run.rundir import RunDirectory, RunDirectoryError, default_directory
     from exubrush.simulation import simulate
 
-    directory = Path(out or default_directory(parameters))
+    directory = Path(out or default_directory(prepared.case))
     try:
         store = RunDirectory(directory, prepared, overwrite)
     except RunDirectoryError as err:
@@ -144,6 +123,39 @@ def run(case, model, segments, periods, out, overrides, overwrite, quiet, preset
         _fail(f"results not written: {os_message(err)}; the finished bristles stay in "
               f"{store.checkpoint}: free the space or fix the directory and run the same "
               "command again to resume", RUN_FAILED)
+    _report(results, store, directory)
+
+
+def _prepared(case: str, overrides: list[str]):
+    """The run's PreparedCase from the case name or file and its ``--set`` overrides, its
+    warnings told on standard error; a bad input ends the command (one line, exit 2)."""
+    from exubrush.parameters.fields import ParameterError
+    from exubrush.parameters.io import load_case
+    from exubrush.run.prepared import prepare
+    from exubrush.util.units import UnitError
+
+    try:
+        prepared = prepare(load_case(case, overrides))
+    except (ParameterError, UnitError) as err:
+        _fail(str(err))
+    for warning in prepared.warnings:
+        click.echo(f"exubrush: warning: {warning}", err=True)
+    if prepared.unreachable:
+        click.echo(f"exubrush: warning: {prepared.unreachable} of {len(prepared.bristles)} "
+                   "bristles cannot reach the surface at motion.interaction_distance = "
+                   f"{prepared.case.motion.interaction_distance:g} mm; they get no contact",
+                   err=True)
+    twins = len(prepared.groups) - len(prepared.solved_groups)
+    if twins:
+        click.echo(f"{len(prepared.solved_groups)} of {len(prepared.groups)} bristle systems to "
+                   f"solve: the other {twins} are twins of those, moving alike along the plane "
+                   "(solver.share_identical)", err=True)
+    return prepared
+
+
+def _report(results, store, directory: Path) -> None:
+    """Say how the run ended (warnings and notes on standard error); exit 130 for an
+    interrupted run, 1 for a failed one (its partial results are saved)."""
     meta = results.metadata
     sanity = meta["sanity"]
     if sanity["peak_normal_force_N"] > sanity["normal_force_bound_N"]:

@@ -48,14 +48,32 @@ def read_unit_table(path: str | Path, columns: dict[str, str], what: str,
         ``columns`` only in case, a unit of the wrong dimension, a row with more cells than
         the header has columns, a cell that is not a number.
     """
-    from exubrush.util.units import MissingUnitError, UnitError, to_internal
-
     name = f"{what} {str(path)!r}"
     rows = read_rows(path, what)
     if len(rows) < 3:
         raise ValueError(f"{name} needs a header and at least two rows, found {len(rows)} lines")
     labels = split_header(rows[0][1])
-    header = {label: (index, unit) for index, (label, unit) in enumerate(labels)}
+    _check_layout(name, rows, labels, columns)
+    data = {}
+    for label, target in columns.items():
+        same = [cell.strip() for cell, (other, _) in zip(rows[0][1], labels, strict=True)
+                if other == label]
+        if len(same) > 1:
+            raise ValueError(f"{name} has {len(same)} columns for '{label}' "
+                             f"({', '.join(map(repr, same))}); keep one")
+        index = next((k for k, (other, _) in enumerate(labels) if other == label), None)
+        if index is None:
+            if label in optional:
+                continue
+            raise ValueError(f"{name} has no column '{label} [unit]'")
+        data[label] = _column(name, rows, index, label, labels[index][1], target)
+    return data
+
+
+def _check_layout(name: str, rows: list[tuple[int, list[str]]],
+                  labels: list[tuple[str, str]], columns: dict[str, str]) -> None:
+    """Refuse a header label that differs from one of ``columns`` only in case, and a row
+    with more cells than the header has columns (ValueError naming the file ``name``)."""
     wanted = {label.casefold(): label for label in columns}
     for label, unit in labels:  # 'Y [mm]' beside 'x [mm]' would be ignored as another column
         meant = wanted.get(label.casefold())
@@ -66,40 +84,35 @@ def read_unit_table(path: str | Path, columns: dict[str, str], what: str,
         if any(cell.strip() for cell in row[len(labels):]):
             raise ValueError(f"{name}: line {line} has {len(row)} cells for {len(labels)} "
                              "columns (a decimal comma? write 1.5, not 1,5)")
-    data = {}
-    for label, target in columns.items():
-        same = [cell.strip() for cell, (other, _) in zip(rows[0][1], labels, strict=True)
-                if other == label]
-        if len(same) > 1:
-            raise ValueError(f"{name} has {len(same)} columns for '{label}' "
-                             f"({', '.join(map(repr, same))}); keep one")
-        if label not in header:
-            if label in optional:
-                continue
-            raise ValueError(f"{name} has no column '{label} [unit]'")
-        index, unit = header[label]
-        if not unit:
-            raise ValueError(f"{name}: column '{label}' has no unit; write '{label} [{target}]'")
+
+
+def _column(name: str, rows: list[tuple[int, list[str]]], index: int, label: str, unit: str,
+            target: str) -> np.ndarray:
+    """The cells of column ``index`` (``label [unit]``) of the data ``rows`` in the internal
+    unit ``target`` (ValueError naming the file ``name``, line and column at fault)."""
+    from exubrush.util.units import MissingUnitError, UnitError, to_internal
+
+    if not unit:
+        raise ValueError(f"{name}: column '{label}' has no unit; write '{label} [{target}]'")
+    try:
+        factor = to_internal(f"1 {unit}", target)
+    except MissingUnitError:  # [1], [%]: a number where an angle or length is meant
+        raise ValueError(f"{name}: column '{label} [{unit}]' has no unit of '{target}'; "
+                         f"write '{label} [{target}]' or another unit of that "
+                         "dimension") from None
+    except UnitError as err:
+        raise ValueError(f"{name}: column '{label}': {err}") from None
+    values = []
+    for line, row in rows[1:]:
         try:
-            factor = to_internal(f"1 {unit}", target)
-        except MissingUnitError:  # [1], [%]: a number where an angle or length is meant
-            raise ValueError(f"{name}: column '{label} [{unit}]' has no unit of '{target}'; "
-                             f"write '{label} [{target}]' or another unit of that "
-                             "dimension") from None
-        except UnitError as err:
-            raise ValueError(f"{name}: column '{label}': {err}") from None
-        values = []
-        for line, row in rows[1:]:
-            try:
-                values.append(float(row[index]))
-            except (ValueError, IndexError):
-                cell = row[index] if index < len(row) else ""
-                raise ValueError(
-                    f"{name}: line {line}, column '{label}': {cell!r} is not a number"
-                ) from None
-        with np.errstate(over="ignore"):  # 1e308 km: inf, which the caller refuses
-            data[label] = np.array(values) * factor
-    return data
+            values.append(float(row[index]))
+        except (ValueError, IndexError):
+            cell = row[index] if index < len(row) else ""
+            raise ValueError(
+                f"{name}: line {line}, column '{label}': {cell!r} is not a number"
+            ) from None
+    with np.errstate(over="ignore"):  # 1e308 km: inf, which the caller refuses
+        return np.array(values) * factor
 
 
 def read_rows(path: str | Path, what: str) -> list[tuple[int, list[str]]]:
