@@ -144,7 +144,7 @@ class Scene:
         return True
 
 
-def _add_drive(scene: Scene, handle_node) -> None:
+def add_drive(scene: Scene, handle_node) -> None:
     """Prescribe the handle's six coordinates: the slide along the slide axis plus the
     descent along z, nothing on the other axes; with pose terms, all six follow
     exubrush.world.kinematics.handle_coordinates.
@@ -326,9 +326,19 @@ def _tangent_plane_refresh(mesh, surface, planes):
     return refresh
 
 
+class Handle(NamedTuple):
+    """The handle's Exudyn items: the node the drive prescribes and the body the bristles
+    are clamped to."""
+
+    node: int
+    body: int
+
+
 def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None,
                 drawn: bool = False) -> Scene:
-    """Assemble the bristles ``selection`` of ``prepared`` into a ready-to-solve system.
+    """Assemble the bristles ``selection`` of ``prepared`` into a ready-to-solve system:
+    the handle and its drive, each bristle with its tip's contact with the surface, the
+    contact between the bristles, then the step hooks.
 
     Parameters
     ----------
@@ -342,9 +352,42 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
     case = prepared.case
     indices = tuple(range(len(prepared.bristles))) if selection is None else selection
     bristles = tuple(prepared.bristles[i] for i in indices)
-    prb = prepared.prb
-    gamma = None if prb is None else prb.gamma
-    surface_drawing, handle_drawing = _drawings(prepared, bristles, gamma) if drawn else ([], [])
+    scene, handle = add_handle(prepared, bristles, drawn)
+    add_drive(scene, handle.node)
+    surface = surface_marker(scene.mbs, scene.ground, case.surface)
+    laws = {}  # tip radius -> the contact law's user function, shared by its tips
+    polylines = []
+    tips = []  # (node, sphere radius) of the tips that reach the surface
+    # each bristle's tip contact right after its bodies: the items' order is the system's
+    for index, bristle in enumerate(bristles):
+        items = add_bristle(scene, prepared, bristle, handle.body, drawn)
+        polylines.append(_polyline(bristle, items.nodes, _link_factor(prepared)))
+        if prepared.reaching[indices[index]]:
+            tips.append((items.nodes[-1], bristle.tip_radius))
+            add_surface_contact(scene, prepared, surface, index, items, laws)
+    scene.keep_alive.extend(laws.values())
+    add_contact_between(scene, case, handle.node, polylines)
+    add_step_hooks(scene, prepared, tips)
+    scene.mbs.Assemble()
+    if scene.bristle_contact is not None:
+        from exubrush.contact.exudyn_between import locate_in_system
+
+        locate_in_system(scene.mbs, scene.bristle_contact)
+    _add_line_search(scene, case.solver.line_search)
+    return scene
+
+
+def _link_factor(prepared: PreparedCase) -> float | None:
+    """The PRB link factor gamma of ``prepared``'s model, None for the DFM."""
+    return None if prepared.prb is None else prepared.prb.gamma
+
+
+def add_handle(prepared: PreparedCase, bristles, drawn: bool) -> tuple[Scene, Handle]:
+    """A new system with the ground (the surface's drawing) and the handle: a rigid block
+    at the start height, lighter for a posed head (:data:`POSED_HANDLE_LIGHTER`), with no
+    gravity; the scene that holds it and the handle's items."""
+    surface_drawing, handle_drawing = (_drawings(prepared, bristles, _link_factor(prepared))
+                                       if drawn else ([], []))
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
     ground = mbs.AddObject(eii.ObjectGround(
@@ -359,51 +402,81 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
     )
     scene = Scene(SC, mbs, prepared.motion, prepared.slide_axis, handle_inertia.Mass(),
                   bristles, ground=ground, handle_inertia=handle_inertia.InertiaCOM())
-    _add_drive(scene, handle["nodeNumber"])
-    surface = surface_marker(mbs, ground, case.surface)
-    laws = {}
+    return scene, Handle(handle["nodeNumber"], handle["bodyNumber"])
+
+
+def add_bristle(scene: Scene, prepared: PreparedCase, bristle: BristleGeometry,
+                 handle_body: int, drawn: bool):
+    """One bristle of ``prepared``'s model clamped to the handle body, and a sensor of each
+    of its nodes' positions; its Exudyn items (exubrush.models.assembly.BristleItems)."""
+    case, mbs = prepared.case, scene.mbs
     origin = (0.0, 0.0, prepared.start_height)
-    polylines = []
-    tips = []  # (node, sphere radius) of the tips that reach the surface
-    for index, bristle in enumerate(bristles):
-        if case.model.kind == "dfm":
-            items = add_dfm_bristle(mbs, handle["bodyNumber"], bristle, bristle.material,
-                                    case.model.segments, origin, drawn, case.model.node_rotation)
-        else:
-            items = add_prb_bristle(mbs, handle["bodyNumber"], bristle, bristle.material,
-                                    prb.gamma, prb.stiffness_coefficient, origin, drawn,
-                                    case.model.node_rotation, case.model.prb_link,
-                                    case.model.prb_pivot)
-        scene.keep_alive.extend(items.user_functions)
-        polylines.append(_polyline(bristle, items.nodes, gamma))
-        scene.node_sensors.append([
-            mbs.AddSensor(eii.SensorNode(nodeNumber=n, storeInternal=True, writeToFile=False,
-                                         outputVariableType=exu.OutputVariableType.Position))
-            for n in items.nodes
-        ])
-        if prepared.reaching[indices[index]]:
-            tips.append((items.nodes[-1], bristle.tip_radius))
-            planes = len(scene.tangent_planes)
-            contact = _add_contact(scene, prepared, surface, items.tip_body, items.nodes[-1],
-                                   bristle, laws)
-            scene.contacts.append(contact)
-            frame_sensor = None
-            if len(scene.tangent_planes) > planes:  # the frame moves: record it with the force
-                frame_sensor = mbs.AddSensor(eii.SensorMarker(
-                    markerNumber=scene.tangent_planes[-1].marker, storeInternal=True,
-                    writeToFile=False, outputVariableType=exu.OutputVariableType.RotationMatrix))
-            compiled = contact in scene.compiled_contacts
-            if compiled:  # an object, not a connector
-                sensor = eii.SensorBody(bodyNumber=scene.compiled_contacts[contact].item,
-                                        storeInternal=True, writeToFile=False,
-                                        outputVariableType=exu.OutputVariableType.Force)
-            else:
-                sensor = eii.SensorObject(objectNumber=contact, storeInternal=True,
-                                          writeToFile=False,
-                                          outputVariableType=contact_force_output(case))
-            scene.contact_sensors.append(ContactSensor(index, mbs.AddSensor(sensor),
-                                                       frame_sensor, compiled))
-    scene.keep_alive.extend(laws.values())
+    if case.model.kind == "dfm":
+        items = add_dfm_bristle(mbs, handle_body, bristle, bristle.material,
+                                case.model.segments, origin, drawn, case.model.node_rotation)
+    else:
+        prb = prepared.prb
+        items = add_prb_bristle(mbs, handle_body, bristle, bristle.material, prb.gamma,
+                                prb.stiffness_coefficient, origin, drawn,
+                                case.model.node_rotation, case.model.prb_link,
+                                case.model.prb_pivot)
+    scene.keep_alive.extend(items.user_functions)
+    scene.node_sensors.append([
+        mbs.AddSensor(eii.SensorNode(nodeNumber=n, storeInternal=True, writeToFile=False,
+                                     outputVariableType=exu.OutputVariableType.Position))
+        for n in items.nodes
+    ])
+    return items
+
+
+def add_surface_contact(scene: Scene, prepared: PreparedCase, surface, index: int, items,
+                         laws: dict) -> None:
+    """The contact of the tip of the scene's bristle ``index`` (its Exudyn ``items``) with
+    the surface (marker ``surface``), and the sensors that record its force (and, where it
+    moves, its frame)."""
+    mbs, case = scene.mbs, prepared.case
+    planes = len(scene.tangent_planes)
+    contact = _add_contact(scene, prepared, surface, items.tip_body, items.nodes[-1],
+                           scene.bristles[index], laws)
+    scene.contacts.append(contact)
+    frame_sensor = None
+    if len(scene.tangent_planes) > planes:  # the frame moves: record it with the force
+        frame_sensor = mbs.AddSensor(eii.SensorMarker(
+            markerNumber=scene.tangent_planes[-1].marker, storeInternal=True,
+            writeToFile=False, outputVariableType=exu.OutputVariableType.RotationMatrix))
+    compiled = contact in scene.compiled_contacts
+    if compiled:  # an object, not a connector
+        sensor = eii.SensorBody(bodyNumber=scene.compiled_contacts[contact].item,
+                                storeInternal=True, writeToFile=False,
+                                outputVariableType=exu.OutputVariableType.Force)
+    else:
+        sensor = eii.SensorObject(objectNumber=contact, storeInternal=True,
+                                  writeToFile=False,
+                                  outputVariableType=contact_force_output(case))
+    scene.contact_sensors.append(ContactSensor(index, mbs.AddSensor(sensor), frame_sensor,
+                                               compiled))
+
+
+def add_contact_between(scene: Scene, case, handle_node: int, polylines: list) -> None:
+    """The contact between the scene's bristles (contact.between_bristles), where there are
+    two or more, on the capsule chains ``polylines`` (:func:`_polyline`)."""
+    if not (case.contact.between_bristles and len(scene.bristles) > 1):
+        return
+    # imported here: it loads numba, which a scene of bristles apart does not need
+    from exubrush.contact.exudyn_between import add_bristle_contact
+
+    scene.bristle_contact = add_bristle_contact(
+        scene.mbs, handle_node, polylines,
+        [0.5 * max(b.width, b.height) for b in scene.bristles], case.contact.bristles)
+    scene.keep_alive.append(scene.bristle_contact)
+
+
+def add_step_hooks(scene: Scene, prepared: PreparedCase, tips: list) -> None:
+    """The hooks the solve calls before every step, after the drive's: the mesh's tangent
+    planes, the friction's lagged drop or blend, the contact between bristles' sampling,
+    the Jacobian's renewal, the step cap (``tips``: (node, sphere radius) of the tips that
+    reach the surface) and the contact between bristles' candidate pairs."""
+    case = prepared.case
     if scene.tangent_planes:
         scene.step_hooks.append(_tangent_plane_refresh(prepared.mesh, case.surface,
                                                        scene.tangent_planes))
@@ -415,14 +488,7 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
     if case.contact.backend == "exudyn-builtin" and window is not None and scene.contacts:
         scene.step_hooks.append(
             builtin_friction_blend(scene.contacts, case.contact.dynamic_friction, window))
-    if case.contact.between_bristles and len(bristles) > 1:
-        # imported here: it loads numba, which a scene of bristles apart does not need
-        from exubrush.contact.exudyn_between import add_bristle_contact, contact_refresh
-
-        scene.bristle_contact = add_bristle_contact(
-            mbs, handle["nodeNumber"], polylines,
-            [0.5 * max(b.width, b.height) for b in bristles], case.contact.bristles)
-        scene.keep_alive.append(scene.bristle_contact)
+    if scene.bristle_contact is not None:
         scene.step_hooks.append(_contact_sampler(scene.bristle_contact, case.output.interval))
     # touching groups renew the Jacobian at every step attempt anyway (solver.dynamic_settings)
     if scene.bristle_contact is None and linear_solver(case.solver) == "EigenSparse":
@@ -434,14 +500,9 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
     if cap is not None:
         scene.step_hooks.append(cap)
     if scene.bristle_contact is not None:  # after the step cap: it reads the step's cap
-        scene.step_hooks.append(contact_refresh(scene.bristle_contact, case.solver.step_size))
-    mbs.Assemble()
-    if scene.bristle_contact is not None:
-        from exubrush.contact.exudyn_between import locate_in_system
+        from exubrush.contact.exudyn_between import contact_refresh
 
-        locate_in_system(mbs, scene.bristle_contact)
-    _add_line_search(scene, case.solver.line_search)
-    return scene
+        scene.step_hooks.append(contact_refresh(scene.bristle_contact, case.solver.step_size))
 
 
 def _add_line_search(scene: Scene, setting: str) -> None:
