@@ -33,6 +33,7 @@ from exubrush.models.dfm import add_dfm_bristle
 from exubrush.models.geometry import BristleGeometry
 from exubrush.models.prb import add_prb_bristle, stub_graphics
 from exubrush.models.stiffness import buckling_load
+from exubrush.parameters.choices import POSE_AXES
 from exubrush.parameters.surface_kinds import (
     CYLINDER,
     MESH,
@@ -104,6 +105,29 @@ class CompiledContact(NamedTuple):
     drops: np.ndarray  # the drop ratios that object reads
 
 
+@dataclass(frozen=True)
+class DriveSensors:
+    """The sensors of the drive's reactions on the handle, one per prescribed coordinate
+    (exubrush.parameters.choices.POSE_AXES), each the Force of its coordinate constraint."""
+
+    x: int  # [N]
+    y: int  # [N]
+    z: int  # [N]: the force pressing the head onto the surface
+    rx: int  # generalised forces on the handle's Tait-Bryan angles [N·mm]
+    ry: int
+    rz: int
+
+    @property
+    def force(self) -> tuple[int, int, int]:
+        """The force's sensors, x, y, z [N]."""
+        return self.x, self.y, self.z
+
+    @property
+    def moment(self) -> tuple[int, int, int]:
+        """The Tait-Bryan angles' sensors, rx, ry, rz [N·mm]."""
+        return self.rx, self.ry, self.rz
+
+
 @dataclass
 class Scene:
     """An assembled Exudyn system and the indices needed to read it."""
@@ -114,9 +138,8 @@ class Scene:
     slide_axis: np.ndarray
     handle_mass: float
     bristles: tuple[BristleGeometry, ...]
-    drive_sensors: list = field(default_factory=list)
-    # the drive's generalised forces on the handle's Tait-Bryan angles [N·mm]
-    drive_moment_sensors: list = field(default_factory=list)
+    # the drive's reactions (add_drive)
+    drive_sensors: DriveSensors | None = None
     # the handle's inertia about its centre (its node), body frame [t·mm²]
     handle_inertia: np.ndarray = field(default_factory=lambda: np.zeros((3, 3)))
     node_sensors: list = field(default_factory=list)
@@ -162,6 +185,7 @@ def add_drive(scene: Scene, handle_node) -> None:
     posed = motion.pose is not None
     start = handle_coordinates(motion, slide_axis, 0.0) if posed else None
     moving = []  # (constraint, slide factor, descent factor) of the axes that move
+    sensors = []
     for axis in range(6):
         marker = mbs.AddMarker(eii.MarkerNodeCoordinate(nodeNumber=handle_node, coordinate=axis))
         along = float(slide_axis[axis]) if axis < 3 else 0.0
@@ -176,10 +200,10 @@ def add_drive(scene: Scene, handle_node) -> None:
         )
         if along or down or posed:
             moving.append((constraint, along, down))
-        sensors = scene.drive_sensors if axis < 3 else scene.drive_moment_sensors
         sensors.append(mbs.AddSensor(eii.SensorObject(
             objectNumber=constraint, storeInternal=True, writeToFile=False,
             outputVariableType=exu.OutputVariableType.Force)))
+    scene.drive_sensors = DriveSensors(**dict(zip(POSE_AXES, sensors, strict=True)))
 
     last = [None] * len(moving)
 

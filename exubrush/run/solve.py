@@ -144,7 +144,7 @@ def solve_once(prepared: PreparedCase, selection: tuple[int, ...],
             if not np.all(np.isfinite(mbs.systemData.GetODE2Coordinates())):
                 status["reason"] = f"non-finite state at t = {t:.6g} s"
                 return False
-            pressing = float(np.max(np.abs(mbs.GetSensorValues(scene.drive_sensors[2]))))
+            pressing = float(np.max(np.abs(mbs.GetSensorValues(scene.drive_sensors.z))))
             if pressing > bound:
                 status["reason"] = beyond_bound_message(case.model.kind, t, pressing, bound)
                 return False
@@ -174,8 +174,8 @@ def solve_once(prepared: PreparedCase, selection: tuple[int, ...],
     def stored(sensor):
         return np.asarray(scene.mbs.GetSensorStoredData(sensor))
 
-    drive = [stored(s) for s in scene.drive_sensors]
-    turning = [stored(s) for s in scene.drive_moment_sensors]
+    drive = [stored(s) for s in scene.drive_sensors.force]
+    turning = [stored(s) for s in scene.drive_sensors.moment]
     histories = [[stored(s) for s in sensors] for sensors in scene.node_sensors]
     # (force rows, frame rows or None) of each of scene.contact_sensors
     contact_rows = [(stored(s.force), None if s.frame is None else stored(s.frame))

@@ -42,9 +42,14 @@ def test_the_drive_sets_the_slide_and_the_descent_before_a_step():
     scene, handle = _handle(prepared)
     scenes.add_drive(scene, handle.node)
     mbs = scene.mbs
-    constraints = [mbs.GetSensor(s)["objectNumber"]
-                   for s in [*scene.drive_sensors, *scene.drive_moment_sensors]]
-    assert len(set(constraints)) == 6  # one per coordinate of the handle
+    sensors = scene.drive_sensors
+    named = [sensors.x, sensors.y, sensors.z, sensors.rx, sensors.ry, sensors.rz]
+    assert [*sensors.force, *sensors.moment] == named
+    constraints = [mbs.GetSensor(s)["objectNumber"] for s in named]
+    # one per coordinate of the handle, in its order
+    markers = [mbs.GetMarker(mbs.GetObject(c)["markerNumbers"][1]) for c in constraints]
+    assert {int(m["nodeNumber"]) for m in markers} == {int(handle.node)}
+    assert [m["coordinate"] for m in markers] == list(range(6))
     (drive,) = scene.step_hooks
     t = scene.motion.slide_start + 0.3
     drive(mbs, t)
