@@ -17,29 +17,17 @@ import exudyn.itemInterface as eii
 import numpy as np
 from exudyn.rigidBodyUtilities import InertiaCuboid
 
-from exubrush.contact.exudyn_contact import (
-    add_builtin_tip_contact,
-    add_compiled_tip_contact,
-    add_tip_contact,
-    builtin_friction_blend,
-    contact_user_function,
-    lagged_drop_hook,
-    surface_marker,
-)
-from exubrush.contact.laws import builtin_contact_parameters, drop_can_lag
-from exubrush.contact.tip_force import contact_force_output
-from exubrush.models.assembly import rigid_marker
+from exubrush.contact.exudyn_contact import surface_marker
+from exubrush.contact.tip_backends import BACKENDS, TipContact, TipSite, tip_backend
 from exubrush.models.dfm import add_dfm_bristle
 from exubrush.models.geometry import BristleGeometry
 from exubrush.models.prb import add_prb_bristle, stub_graphics
-from exubrush.models.stiffness import buckling_load
 from exubrush.parameters.choices import POSE_AXES
 from exubrush.parameters.surface_kinds import (
     CYLINDER,
     MESH,
     PLANE,
     SPHERE,
-    SURFACE_KIND,
     TOOTH_ROW,
 )
 from exubrush.run.newton import LineSearch, after_step_cut, has_lie_group_nodes
@@ -79,7 +67,7 @@ class ContactSensor(NamedTuple):
     bristle: int  # index of the bristle in the scene
     force: int  # sensor of the contact's force
     frame: int | None  # sensor of the contact frame's rotation matrix where it moves (a mesh)
-    compiled: bool  # whether the contact is the compiled law (its object's Force)
+    compiled: bool  # whether the contact is the compiled law (force_on_tip reads it so)
 
 
 class TangentPlane(NamedTuple):
@@ -87,22 +75,6 @@ class TangentPlane(NamedTuple):
 
     node: int  # the tip node
     marker: int  # the marker of its contact frame, moved before every step
-
-
-class LaggedContact(NamedTuple):
-    """A tip contact that reads a lagged friction drop
-    (exubrush.contact.exudyn_contact.lagged_drop_hook)."""
-
-    connector: int
-    tip_radius: float  # mm
-
-
-class CompiledContact(NamedTuple):
-    """The compiled law of a tip contact (contact.backend "paper-compiled";
-    exubrush.contact.exudyn_contact.add_compiled_tip_contact)."""
-
-    item: int  # its ObjectGenericODE2
-    drops: np.ndarray  # the drop ratios that object reads
 
 
 @dataclass(frozen=True)
@@ -143,14 +115,10 @@ class Scene:
     # the handle's inertia about its centre (its node), body frame [t·mm²]
     handle_inertia: np.ndarray = field(default_factory=lambda: np.zeros((3, 3)))
     node_sensors: list = field(default_factory=list)
-    contacts: list = field(default_factory=list)
+    # each tip's contact with the surface (exubrush.contact.tip_backends)
+    contacts: list[TipContact] = field(default_factory=list)
     contact_sensors: list[ContactSensor] = field(default_factory=list)
     keep_alive: list = field(default_factory=list)
-    # each tip on a mesh surface
-    tangent_planes: list[TangentPlane] = field(default_factory=list)
-    lagged_contacts: list[LaggedContact] = field(default_factory=list)
-    # connector -> its compiled law, where contact.backend "paper-compiled" applies
-    compiled_contacts: dict[int, CompiledContact] = field(default_factory=dict)
     ground: int = 0
     # callables (mbs, t) that the solve must call before every step
     step_hooks: list = field(default_factory=list)
@@ -158,6 +126,12 @@ class Scene:
     bristle_contact: BristleContact | None = None
     # the line search in Newton's iterations (solver.line_search), where it runs
     line_search: LineSearch | None = None
+
+    @property
+    def tangent_planes(self) -> list[TangentPlane]:
+        """Each tip on a mesh surface and its contact frame's marker."""
+        return [TangentPlane(c.node, c.frame_marker) for c in self.contacts
+                if c.frame_marker is not None]
 
     def run_step_hooks(self, mbs, t) -> bool:
         """Call every step hook; True (go on). Fit for Exudyn's pre-step user function
@@ -269,66 +243,6 @@ def surface_graphics(surface, size: float, mesh=None) -> list:
                                         size=np.abs(box).tolist(), color=grey))
         return drawn
     raise ValueError(f"surface kind {surface.kind!r} has no graphics")
-
-
-def _add_contact(scene: Scene, prepared: PreparedCase, surface_marker_number, tip_body,
-                 tip_node, bristle: BristleGeometry, laws: dict):
-    """The tip's contact with the surface: the paper's law as a user function (one per tip
-    radius, cached in ``laws``), or Exudyn's built-in contact with the nearest parameters
-    (a plane only)."""
-    case, window = prepared.case, prepared.friction_window
-    if case.contact.backend == "exudyn-builtin":
-        parameters = builtin_contact_parameters(
-            case.contact,
-            buckling_load(bristle.section, bristle.material.youngs_modulus, bristle.length),
-        )
-        if window is not None:
-            parameters["dynamicFriction"] = 0.0  # blended in by a step hook
-        return add_builtin_tip_contact(scene.mbs, surface_marker_number, tip_body,
-                                       bristle.tip_radius, parameters)
-    if case.surface.kind == MESH:
-        # far below until the first step puts it on the tangent plane
-        surface_marker_number = rigid_marker(scene.mbs, scene.ground, [0.0, 0.0, -1e3])
-        scene.tangent_planes.append(TangentPlane(tip_node, surface_marker_number))
-    lagged = lags_friction_drop(case)
-    if bristle.tip_radius not in laws:
-        laws[bristle.tip_radius] = contact_user_function(
-            scene.mbs, case.contact, bristle.tip_radius, window, law_surface(case), lagged)
-    contact = add_tip_contact(scene.mbs, surface_marker_number, tip_body,
-                              laws[bristle.tip_radius], lagged)
-    if lagged:
-        scene.lagged_contacts.append(LaggedContact(contact, bristle.tip_radius))
-    if compiles_contact(case, scene.mbs, tip_node):
-        item, drops, functions = add_compiled_tip_contact(
-            scene.mbs, contact, tip_node, case.surface, case.contact, bristle.tip_radius,
-            window, lagged)
-        scene.keep_alive.append(functions)
-        scene.compiled_contacts[contact] = CompiledContact(item, drops)
-    return contact
-
-
-def compiles_contact(case, mbs, tip_node) -> bool:
-    """Whether the tip's contact is the compiled law (contact.backend "paper-compiled"
-    where it is built: a tip node with Euler parameters over a curved analytic surface);
-    elsewhere that backend is the symbolic law."""
-    return (case.contact.backend == "paper-compiled"
-            and SURFACE_KIND[case.surface.kind].compiled
-            and mbs.GetNode(tip_node)["nodeType"] == "RigidBodyEP")
-
-
-def law_surface(case):
-    """The surface the tip law is written for: None for the plane law, which a plane and a
-    mesh (in a frame on its tangent plane, moved before every step) both use, else the
-    case's analytic surface (exubrush.world.surfaces.features)."""
-    return None if SURFACE_KIND[case.surface.kind].plane_law else case.surface
-
-
-def lags_friction_drop(case) -> bool:
-    """Whether the tip contacts take the friction's drop one step behind
-    (``solver.friction_drop = "lagged"``): with the paper's law as a user function, and only
-    where the law's friction falls (μ_s > μ_d)."""
-    return (case.solver.friction_drop == "lagged" and case.contact.backend != "exudyn-builtin"
-            and drop_can_lag(case.contact))
 
 
 def _tangent_plane_refresh(mesh, surface, planes):
@@ -454,31 +368,25 @@ def add_bristle(scene: Scene, prepared: PreparedCase, bristle: BristleGeometry,
 
 
 def add_surface_contact(scene: Scene, prepared: PreparedCase, surface, index: int, items,
-                         laws: dict) -> None:
+                        laws: dict) -> None:
     """The contact of the tip of the scene's bristle ``index`` (its Exudyn ``items``) with
-    the surface (marker ``surface``), and the sensors that record its force (and, where it
-    moves, its frame)."""
-    mbs, case = scene.mbs, prepared.case
-    planes = len(scene.tangent_planes)
-    contact = _add_contact(scene, prepared, surface, items.tip_body, items.nodes[-1],
-                           scene.bristles[index], laws)
+    the surface (marker ``surface``), made by its back end (exubrush.contact.tip_backends;
+    ``laws``: the user functions by tip radius, shared by the tips), and the sensors that
+    record its force and, where it moves, its frame."""
+    mbs = scene.mbs
+    site = TipSite(mbs, scene.ground, surface, items.tip_body, items.nodes[-1],
+                   scene.bristles[index])
+    backend = tip_backend(prepared.case, site)
+    contact = backend.add(site, prepared.case, prepared.friction_window, laws)
     scene.contacts.append(contact)
     frame_sensor = None
-    if len(scene.tangent_planes) > planes:  # the frame moves: record it with the force
+    if contact.frame_marker is not None:  # the frame moves: record it with the force
         frame_sensor = mbs.AddSensor(eii.SensorMarker(
-            markerNumber=scene.tangent_planes[-1].marker, storeInternal=True,
-            writeToFile=False, outputVariableType=exu.OutputVariableType.RotationMatrix))
-    compiled = contact in scene.compiled_contacts
-    if compiled:  # an object, not a connector
-        sensor = eii.SensorBody(bodyNumber=scene.compiled_contacts[contact].item,
-                                storeInternal=True, writeToFile=False,
-                                outputVariableType=exu.OutputVariableType.Force)
-    else:
-        sensor = eii.SensorObject(objectNumber=contact, storeInternal=True,
-                                  writeToFile=False,
-                                  outputVariableType=contact_force_output(case))
-    scene.contact_sensors.append(ContactSensor(index, mbs.AddSensor(sensor), frame_sensor,
-                                               compiled))
+            markerNumber=contact.frame_marker, storeInternal=True, writeToFile=False,
+            outputVariableType=exu.OutputVariableType.RotationMatrix))
+    scene.contact_sensors.append(ContactSensor(
+        index, mbs.AddSensor(backend.force_sensor(contact)), frame_sensor,
+        contact.compiled is not None))
 
 
 def add_contact_between(scene: Scene, case, handle_node: int, polylines: list) -> None:
@@ -504,14 +412,11 @@ def add_step_hooks(scene: Scene, prepared: PreparedCase, tips: list) -> None:
     if scene.tangent_planes:
         scene.step_hooks.append(_tangent_plane_refresh(prepared.mesh, case.surface,
                                                        scene.tangent_planes))
-    if scene.lagged_contacts:  # after the tangent planes: it reads the contacts' frames
-        drops = {contact: law.drops for contact, law in scene.compiled_contacts.items()}
-        scene.step_hooks.append(lagged_drop_hook(scene.lagged_contacts, case.contact,
-                                                 law_surface(case), drops))
-    window = prepared.friction_window
-    if case.contact.backend == "exudyn-builtin" and window is not None and scene.contacts:
-        scene.step_hooks.append(
-            builtin_friction_blend(scene.contacts, case.contact.dynamic_friction, window))
+    # after the tangent planes: a lagged drop reads the contacts' frames
+    friction = BACKENDS[case.contact.backend].friction_hook(scene.contacts, case,
+                                                            prepared.friction_window)
+    if friction is not None:
+        scene.step_hooks.append(friction)
     if scene.bristle_contact is not None:
         scene.step_hooks.append(_contact_sampler(scene.bristle_contact, case.output.interval))
     # touching groups renew the Jacobian at every step attempt anyway (solver.dynamic_settings)

@@ -92,10 +92,10 @@ def test_a_tip_contact_records_its_force_and_a_moving_frame(case, compiled, movi
     assert (sensor.bristle, sensor.compiled) == (0, compiled)
     recorded = scene.mbs.GetSensor(sensor.force)
     if compiled:  # the object that carries the law, its connector switched off
-        assert int(recorded["bodyNumber"]) == int(scene.compiled_contacts[contact].item)
-        assert not scene.mbs.GetObject(contact)["activeConnector"]
+        assert int(recorded["bodyNumber"]) == int(contact.compiled.item)
+        assert not scene.mbs.GetObject(contact.connector)["activeConnector"]
     else:
-        assert int(recorded["objectNumber"]) == int(contact)
+        assert int(recorded["objectNumber"]) == int(contact.connector)
     assert (sensor.frame is not None) is moving
     assert len(scene.tangent_planes) == moving
 
