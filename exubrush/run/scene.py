@@ -37,6 +37,17 @@ from exubrush.run.solver import (
     fresh_jacobian_while,
     linear_solver,
 )
+from exubrush.run.step_hooks import (
+    AFTER_CUT,
+    CANDIDATES,
+    DRIVE,
+    FRICTION,
+    JACOBIAN,
+    SAMPLING,
+    STEP_SIZE,
+    SURFACES,
+    StepHooks,
+)
 from exubrush.run.step_policy import motion_step_cap, term_step_cap
 from exubrush.world.kinematics import handle_coordinates
 from exubrush.world.mesh import frame_with_normal
@@ -120,8 +131,8 @@ class Scene:
     contact_sensors: list[ContactSensor] = field(default_factory=list)
     keep_alive: list = field(default_factory=list)
     ground: int = 0
-    # callables (mbs, t) that the solve must call before every step
-    step_hooks: list = field(default_factory=list)
+    # the callables (mbs, t) that the solve must call before every step, by phase
+    step_hooks: StepHooks = field(default_factory=StepHooks)
     # contact between the bristles (contact.between_bristles, a group of two or more)
     bristle_contact: BristleContact | None = None
     # the line search in Newton's iterations (solver.line_search), where it runs
@@ -134,11 +145,9 @@ class Scene:
                 if c.frame_marker is not None]
 
     def run_step_hooks(self, mbs, t) -> bool:
-        """Call every step hook; True (go on). Fit for Exudyn's pre-step user function
-        where a solve needs nothing else before a step."""
-        for hook in self.step_hooks:
-            hook(mbs, t)
-        return True
+        """Call every step hook, phase by phase; True (go on). Fit for Exudyn's pre-step
+        user function where a solve needs nothing else before a step."""
+        return self.step_hooks(mbs, t)
 
 
 def add_drive(scene: Scene, handle_node) -> None:
@@ -197,7 +206,7 @@ def add_drive(scene: Scene, handle_node) -> None:
                 last[k] = offset
                 mbs.SetObjectParameter(constraint, "offset", offset)
 
-    scene.step_hooks.append(drive)
+    scene.step_hooks.add(DRIVE, drive)
 
 
 def _drawings(prepared: PreparedCase, bristles, gamma: float | None):
@@ -404,34 +413,34 @@ def add_contact_between(scene: Scene, case, handle_node: int, polylines: list) -
 
 
 def add_step_hooks(scene: Scene, prepared: PreparedCase, tips: list) -> None:
-    """The hooks the solve calls before every step, after the drive's: the mesh's tangent
-    planes, the friction's lagged drop or blend, the contact between bristles' sampling,
-    the Jacobian's renewal, the step cap (``tips``: (node, sphere radius) of the tips that
-    reach the surface) and the contact between bristles' candidate pairs."""
-    case = prepared.case
+    """The hooks the solve calls before every step, each in its phase
+    (exubrush.run.step_hooks; the drive's and the line search's are added with them): the
+    mesh's tangent planes, the friction's lagged drop or blend, the contact between
+    bristles' sampling, the Jacobian's renewal, the step cap (``tips``: (node, sphere
+    radius) of the tips that reach the surface) and the contact between bristles'
+    candidate pairs."""
+    case, hooks, touching = prepared.case, scene.step_hooks, scene.bristle_contact
     if scene.tangent_planes:
-        scene.step_hooks.append(_tangent_plane_refresh(prepared.mesh, case.surface,
-                                                       scene.tangent_planes))
-    # after the tangent planes: a lagged drop reads the contacts' frames
+        hooks.add(SURFACES, _tangent_plane_refresh(prepared.mesh, case.surface,
+                                                   scene.tangent_planes))
     friction = BACKENDS[case.contact.backend].friction_hook(scene.contacts, case,
                                                             prepared.friction_window)
     if friction is not None:
-        scene.step_hooks.append(friction)
-    if scene.bristle_contact is not None:
-        scene.step_hooks.append(_contact_sampler(scene.bristle_contact, case.output.interval))
+        hooks.add(FRICTION, friction)
     # touching groups renew the Jacobian at every step attempt anyway (solver.dynamic_settings)
-    if scene.bristle_contact is None and linear_solver(case.solver) == "EigenSparse":
-        scene.step_hooks.append(fresh_jacobian_after_step_change())
+    if touching is None and linear_solver(case.solver) == "EigenSparse":
+        hooks.add(JACOBIAN, fresh_jacobian_after_step_change())
     terms = term_step_cap(case, scene.motion)
-    if terms is not None and scene.bristle_contact is None:  # touching: renewed anyway
-        scene.step_hooks.append(fresh_jacobian_while(lambda t: terms(t) is not None))
+    if terms is not None and touching is None:
+        hooks.add(JACOBIAN, fresh_jacobian_while(lambda t: terms(t) is not None))
     cap = motion_step_cap(case, scene.motion, tips)
     if cap is not None:
-        scene.step_hooks.append(cap)
-    if scene.bristle_contact is not None:  # after the step cap: it reads the step's cap
+        hooks.add(STEP_SIZE, cap)
+    if touching is not None:
         from exubrush.contact.exudyn_between import contact_refresh
 
-        scene.step_hooks.append(contact_refresh(scene.bristle_contact, case.solver.step_size))
+        hooks.add(SAMPLING, _contact_sampler(touching, case.output.interval))
+        hooks.add(CANDIDATES, contact_refresh(touching, case.solver.step_size))
 
 
 def _add_line_search(scene: Scene, setting: str) -> None:
@@ -440,8 +449,7 @@ def _add_line_search(scene: Scene, setting: str) -> None:
     the group, the search's Python next to nothing), off elsewhere: one bristle's Jacobian
     is cheap, and on the tooth row 45 % fewer Jacobians saved 2 % of CPU time while the
     snaps' paths moved (decisions/0001); off where the nodes' rotations are on the Lie
-    group. "after-cut" runs its switch first among the step hooks, so that the step cap
-    stays the last (it reads the cap the last step set)."""
+    group. "after-cut" runs its switch in the step hooks' phase AFTER_CUT."""
     if setting == "auto":  # the nodes are looked at only where the search would run
         if scene.bristle_contact is None or has_lie_group_nodes(scene.mbs):
             return
@@ -452,7 +460,7 @@ def _add_line_search(scene: Scene, setting: str) -> None:
     if setting == "always":
         scene.mbs.SetPreNewtonResidualUserFunction(scene.line_search)
     else:
-        scene.step_hooks.insert(0, after_step_cut(scene.line_search))
+        scene.step_hooks.add(AFTER_CUT, after_step_cut(scene.line_search))
 
 
 def _polyline(bristle: BristleGeometry, nodes, gamma: float | None) -> list:

@@ -7,6 +7,16 @@ import pytest
 from exubrush.parameters.io import load_case
 from exubrush.run import scene as scenes
 from exubrush.run.prepared import prepare
+from exubrush.run.step_hooks import (
+    AFTER_CUT,
+    CANDIDATES,
+    DRIVE,
+    FRICTION,
+    JACOBIAN,
+    PHASES,
+    SAMPLING,
+    StepHooks,
+)
 
 ONE = ["head.rows=1", "head.columns=1"]
 
@@ -16,9 +26,9 @@ def _handle(prepared, count=1):
     return scenes.add_handle(prepared, prepared.bristles[:count], drawn=False)
 
 
-def _hook_names(scene):
-    """The step hooks' factories, in the order the scene calls them."""
-    return [hook.__qualname__.split(".")[0] for hook in scene.step_hooks]
+def _factories(hooks):
+    """The names of the functions that made ``hooks``."""
+    return [hook.__qualname__.split(".")[0] for hook in hooks]
 
 
 @pytest.mark.parametrize("posed", [False, True])
@@ -34,7 +44,7 @@ def test_the_handle_is_a_block_of_acrylic_lighter_where_the_head_is_posed(posed,
     assert scene.handle_mass == pytest.approx(block * (1e-6 if posed else 1.0), rel=1e-12)
     assert scene.mbs.GetNode(handle.node)["nodeType"] == "RigidBodyRxyz"
     assert int(scene.mbs.GetObject(handle.body)["nodeNumber"]) == int(handle.node)
-    assert scene.step_hooks == []  # nothing moves yet
+    assert len(scene.step_hooks) == 0  # nothing moves yet
 
 
 def test_the_drive_sets_the_slide_and_the_descent_before_a_step():
@@ -50,7 +60,8 @@ def test_the_drive_sets_the_slide_and_the_descent_before_a_step():
     markers = [mbs.GetMarker(mbs.GetObject(c)["markerNumbers"][1]) for c in constraints]
     assert {int(m["nodeNumber"]) for m in markers} == {int(handle.node)}
     assert [m["coordinate"] for m in markers] == list(range(6))
-    (drive,) = scene.step_hooks
+    (drive,) = scene.step_hooks.of(DRIVE)
+    assert len(scene.step_hooks) == 1
     t = scene.motion.slide_start + 0.3
     drive(mbs, t)
     slide, descent = scene.motion.sliding(t)[0], scene.motion.descent(t)[0]
@@ -113,10 +124,35 @@ def test_bristles_touch_each_other_only_where_the_case_asks(between):
     assert (scene.bristle_contact in scene.keep_alive) is between
 
 
-def test_the_step_hooks_run_in_their_order():
-    # two touching filaments of a tuft: the sampling before the step cap, the candidate
-    # pairs after it (they read the cap)
-    prepared = prepare(load_case("tuft", ["contact.between_bristles=true"]))
+def test_the_hooks_run_phase_by_phase_whatever_order_they_came_in():
+    hooks, calls = StepHooks(), []
+    for phase in reversed(PHASES):  # registered backwards, two per phase
+        for k in range(2):
+            hooks.add(phase, lambda mbs, t, name=(phase, k): calls.append((name, t)))
+    assert hooks(None, 0.5) is True
+    assert calls == [((phase, k), 0.5) for phase in PHASES for k in range(2)]
+    with pytest.raises(ValueError, match="'drift' is none of"):
+        hooks.add("drift", print)
+
+
+def test_a_tuft_touching_itself_samples_before_the_step_cap_and_refreshes_after_it():
+    # two touching filaments of a tuft, with the line search after cuts
+    prepared = prepare(load_case("tuft", ["contact.between_bristles=true",
+                                          "solver.line_search='after-cut'"]))
     scene = scenes.build_scene(prepared, prepared.groups[0][:2])
-    assert _hook_names(scene) == ["add_drive", "lagged_drop_hook", "_contact_sampler",
-                                  "step_cap", "contact_refresh"]
+    hooks = scene.step_hooks
+    assert _factories(hooks) == ["after_step_cut", "add_drive", "lagged_drop_hook",
+                                 "_contact_sampler", "step_cap", "contact_refresh"]
+    assert _factories(hooks.of(SAMPLING)) == ["_contact_sampler"]
+    assert _factories(hooks.of(CANDIDATES)) == ["contact_refresh"]
+    assert _factories(hooks.of(AFTER_CUT)) == ["after_step_cut"]
+    assert hooks.of(JACOBIAN) == ()  # touching: renewed at every attempt anyway
+
+
+def test_a_head_apart_renews_its_jacobian_and_blends_the_builtin_friction_in():
+    prepared = prepare(load_case("orthogonal", [*ONE, "contact.backend='exudyn-builtin'",
+                                                "solver.linear_solver='EigenSparse'",
+                                                "motion.approach_friction='off'"]))
+    hooks = scenes.build_scene(prepared, (0,)).step_hooks
+    assert _factories(hooks.of(FRICTION)) == ["builtin_friction_blend"]
+    assert _factories(hooks.of(JACOBIAN)) == ["fresh_jacobian_after_step_change"]
