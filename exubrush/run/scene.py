@@ -2,8 +2,12 @@
 
 Contents: a rigid handle whose six coordinates are prescribed by coordinate constraints
 (the drive; its reaction is what the load cells read), the bristles (DFM or PRB) clamped
-to it, a contact connector for each tip that can reach the surface, and sensors for the
-drive reactions and the bristle nodes.
+to it, a contact for each tip that can reach the surface (made by its back end,
+exubrush.contact.tip_backends), the contact between bristles, and sensors for the drive
+reactions and the bristle nodes. :func:`build_scene` adds them part by part
+(:func:`add_handle`, :func:`add_drive`, :func:`add_bristle`, :func:`add_surface_contact`,
+:func:`add_contact_between`, :func:`add_step_hooks`); the step hooks run in the phases of
+exubrush.run.step_hooks.
 """
 
 from __future__ import annotations
