@@ -1,27 +1,18 @@
 """The force of the surface on a tip, read from its contact sensor.
 
-The scene records each tip contact's force with the output :func:`contact_force_output`
-names; after the solve :func:`force_on_tip` turns those values into the force on the tip,
-head frame [N]. The two halves of that convention stay together here.
+The scene records each tip contact's force with the sensor its back end names
+(exubrush.contact.tip_backends, ``force_sensor``); after the solve :func:`force_on_tip`
+turns those values into the force on the tip, head frame [N].
 """
 
 from __future__ import annotations
 
-import exudyn as exu
 import numpy as np
 
+from exubrush.parameters.choices import EXUDYN_BUILTIN
 from exubrush.world.surfaces import orientation
 
 BUILTIN_FORCE_SIGN = 1.0
-
-
-def contact_force_output(case):
-    """The contact's force output: the user-function connector's ForceLocal (surface frame,
-    minus the force on the tip) or the built-in contact's Force (on the tip, head frame);
-    a compiled contact records its object's Force (:func:`force_on_tip`)."""
-    if case.contact.backend == "exudyn-builtin":
-        return exu.OutputVariableType.Force
-    return exu.OutputVariableType.ForceLocal
 
 
 def force_on_tip(case, values: np.ndarray, frames: np.ndarray | None = None,
@@ -34,7 +25,7 @@ def force_on_tip(case, values: np.ndarray, frames: np.ndarray | None = None,
     compiled contact's Force (its generalized forces' left-hand side, head frame)."""
     if compiled:
         return -values
-    if case.contact.backend == "exudyn-builtin":
+    if case.contact.backend == EXUDYN_BUILTIN:
         return BUILTIN_FORCE_SIGN * values
     if frames is not None:
         return -np.einsum("nij,nj->ni", frames.reshape(-1, 3, 3), values)

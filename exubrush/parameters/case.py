@@ -20,11 +20,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from exubrush.parameters.choices import MESH_UNITS, POSE_AXES, SECTION_SHAPES
+from exubrush.parameters.choices import CONTACT_BACKENDS, MESH_UNITS, POSE_AXES, SECTION_SHAPES
 from exubrush.parameters.fields import Parameters, param
 from exubrush.parameters.surface_kinds import MESH, PLANE, SURFACE_KINDS, TOOTH_ROW
-
-CONTACT_BACKENDS = ("paper-symbolic", "paper-python", "paper-compiled", "exudyn-builtin")
 
 
 @dataclass(frozen=True)

@@ -17,3 +17,9 @@ MESH_UNITS = {"mm": 1.0, "cm": 10.0, "m": 1000.0, "um": 1e-3, "in": 25.4}
 # the head pose's six coordinates in order (a pose term's axis, a pose CSV's columns;
 # exubrush.world.pose): translation x, y, z [mm], then Tait-Bryan angles rx, ry, rz [rad]
 POSE_AXES = ("x", "y", "z", "rx", "ry", "rz")
+
+# how the tip's contact is computed (contact.backend; each a back end in
+# exubrush.contact.tip_backends)
+PAPER_SYMBOLIC, PAPER_PYTHON, PAPER_COMPILED, EXUDYN_BUILTIN = (
+    "paper-symbolic", "paper-python", "paper-compiled", "exudyn-builtin")
+CONTACT_BACKENDS = (PAPER_SYMBOLIC, PAPER_PYTHON, PAPER_COMPILED, EXUDYN_BUILTIN)

@@ -21,13 +21,13 @@ class SurfaceKind:
     plane_law : bool
         The tip law is the plane's (exubrush.contact.laws.sphere_plane_force): on the plane
         itself, and on a mesh in a contact frame moved onto its tangent plane before every
-        step (exubrush.run.scene.law_surface); else the law over the kind's analytic features
-        (exubrush.world.surfaces.features).
+        step (exubrush.contact.tip_backends.law_surface); else the law over the kind's
+        analytic features (exubrush.world.surfaces.features).
     compiled : bool
         A curved analytic surface, over which contact.backend "paper-compiled" computes
         the tip law compiled (exubrush.contact.surface_kernel) on tips with Euler
         parameters (DFM's); elsewhere that backend is the symbolic law
-        (exubrush.run.scene.compiles_contact).
+        (exubrush.contact.tip_backends.CompiledContact.applies).
     larger_steps : bool
         The step may grow in the middle of a stroke, which is steady sliding
         (exubrush.run.step_policy): on a tooth row only while every tip is over a tooth's flat

@@ -2,8 +2,12 @@
 
 Contents: a rigid handle whose six coordinates are prescribed by coordinate constraints
 (the drive; its reaction is what the load cells read), the bristles (DFM or PRB) clamped
-to it, a contact connector for each tip that can reach the surface, and sensors for the
-drive reactions and the bristle nodes.
+to it, a contact for each tip that can reach the surface (made by its back end,
+exubrush.contact.tip_backends), the contact between bristles, and sensors for the drive
+reactions and the bristle nodes. :func:`build_scene` adds them part by part
+(:func:`add_handle`, :func:`add_drive`, :func:`add_bristle`, :func:`add_surface_contact`,
+:func:`add_contact_between`, :func:`add_step_hooks`); the step hooks run in the phases of
+exubrush.run.step_hooks.
 """
 
 from __future__ import annotations
@@ -17,28 +21,17 @@ import exudyn.itemInterface as eii
 import numpy as np
 from exudyn.rigidBodyUtilities import InertiaCuboid
 
-from exubrush.contact.exudyn_contact import (
-    add_builtin_tip_contact,
-    add_compiled_tip_contact,
-    add_tip_contact,
-    builtin_friction_blend,
-    contact_user_function,
-    lagged_drop_hook,
-    surface_marker,
-)
-from exubrush.contact.laws import builtin_contact_parameters, drop_can_lag
-from exubrush.contact.tip_force import contact_force_output
-from exubrush.models.assembly import rigid_marker
+from exubrush.contact.exudyn_contact import surface_marker
+from exubrush.contact.tip_backends import BACKENDS, TipContact, TipSite, tip_backend
 from exubrush.models.dfm import add_dfm_bristle
 from exubrush.models.geometry import BristleGeometry
 from exubrush.models.prb import add_prb_bristle, stub_graphics
-from exubrush.models.stiffness import buckling_load
+from exubrush.parameters.choices import POSE_AXES
 from exubrush.parameters.surface_kinds import (
     CYLINDER,
     MESH,
     PLANE,
     SPHERE,
-    SURFACE_KIND,
     TOOTH_ROW,
 )
 from exubrush.run.newton import LineSearch, after_step_cut, has_lie_group_nodes
@@ -47,6 +40,17 @@ from exubrush.run.solver import (
     fresh_jacobian_after_step_change,
     fresh_jacobian_while,
     linear_solver,
+)
+from exubrush.run.step_hooks import (
+    AFTER_CUT,
+    CANDIDATES,
+    DRIVE,
+    FRICTION,
+    JACOBIAN,
+    SAMPLING,
+    STEP_SIZE,
+    SURFACES,
+    StepHooks,
 )
 from exubrush.run.step_policy import motion_step_cap, term_step_cap
 from exubrush.world.kinematics import handle_coordinates
@@ -78,7 +82,7 @@ class ContactSensor(NamedTuple):
     bristle: int  # index of the bristle in the scene
     force: int  # sensor of the contact's force
     frame: int | None  # sensor of the contact frame's rotation matrix where it moves (a mesh)
-    compiled: bool  # whether the contact is the compiled law (its object's Force)
+    compiled: bool  # whether the contact is the compiled law (force_on_tip reads it so)
 
 
 class TangentPlane(NamedTuple):
@@ -88,20 +92,27 @@ class TangentPlane(NamedTuple):
     marker: int  # the marker of its contact frame, moved before every step
 
 
-class LaggedContact(NamedTuple):
-    """A tip contact that reads a lagged friction drop
-    (exubrush.contact.exudyn_contact.lagged_drop_hook)."""
+@dataclass(frozen=True)
+class DriveSensors:
+    """The sensors of the drive's reactions on the handle, one per prescribed coordinate
+    (exubrush.parameters.choices.POSE_AXES), each the Force of its coordinate constraint."""
 
-    connector: int
-    tip_radius: float  # mm
+    x: int  # [N]
+    y: int  # [N]
+    z: int  # [N]: the force pressing the head onto the surface
+    rx: int  # generalised forces on the handle's Tait-Bryan angles [N·mm]
+    ry: int
+    rz: int
 
+    @property
+    def force(self) -> tuple[int, int, int]:
+        """The force's sensors, x, y, z [N]."""
+        return self.x, self.y, self.z
 
-class CompiledContact(NamedTuple):
-    """The compiled law of a tip contact (contact.backend "paper-compiled";
-    exubrush.contact.exudyn_contact.add_compiled_tip_contact)."""
-
-    item: int  # its ObjectGenericODE2
-    drops: np.ndarray  # the drop ratios that object reads
+    @property
+    def moment(self) -> tuple[int, int, int]:
+        """The Tait-Bryan angles' sensors, rx, ry, rz [N·mm]."""
+        return self.rx, self.ry, self.rz
 
 
 @dataclass
@@ -114,37 +125,36 @@ class Scene:
     slide_axis: np.ndarray
     handle_mass: float
     bristles: tuple[BristleGeometry, ...]
-    drive_sensors: list = field(default_factory=list)
-    # the drive's generalised forces on the handle's Tait-Bryan angles [N·mm]
-    drive_moment_sensors: list = field(default_factory=list)
+    # the drive's reactions (add_drive)
+    drive_sensors: DriveSensors | None = None
     # the handle's inertia about its centre (its node), body frame [t·mm²]
     handle_inertia: np.ndarray = field(default_factory=lambda: np.zeros((3, 3)))
     node_sensors: list = field(default_factory=list)
-    contacts: list = field(default_factory=list)
+    # each tip's contact with the surface (exubrush.contact.tip_backends)
+    contacts: list[TipContact] = field(default_factory=list)
     contact_sensors: list[ContactSensor] = field(default_factory=list)
     keep_alive: list = field(default_factory=list)
-    # each tip on a mesh surface
-    tangent_planes: list[TangentPlane] = field(default_factory=list)
-    lagged_contacts: list[LaggedContact] = field(default_factory=list)
-    # connector -> its compiled law, where contact.backend "paper-compiled" applies
-    compiled_contacts: dict[int, CompiledContact] = field(default_factory=dict)
     ground: int = 0
-    # callables (mbs, t) that the solve must call before every step
-    step_hooks: list = field(default_factory=list)
+    # the callables (mbs, t) that the solve must call before every step, by phase
+    step_hooks: StepHooks = field(default_factory=StepHooks)
     # contact between the bristles (contact.between_bristles, a group of two or more)
     bristle_contact: BristleContact | None = None
     # the line search in Newton's iterations (solver.line_search), where it runs
     line_search: LineSearch | None = None
 
+    @property
+    def tangent_planes(self) -> list[TangentPlane]:
+        """Each tip on a mesh surface and its contact frame's marker."""
+        return [TangentPlane(c.node, c.frame_marker) for c in self.contacts
+                if c.frame_marker is not None]
+
     def run_step_hooks(self, mbs, t) -> bool:
-        """Call every step hook; True (go on). Fit for Exudyn's pre-step user function
-        where a solve needs nothing else before a step."""
-        for hook in self.step_hooks:
-            hook(mbs, t)
-        return True
+        """Call every step hook, phase by phase; True (go on). Fit for Exudyn's pre-step
+        user function where a solve needs nothing else before a step."""
+        return self.step_hooks(mbs, t)
 
 
-def _add_drive(scene: Scene, handle_node) -> None:
+def add_drive(scene: Scene, handle_node) -> None:
     """Prescribe the handle's six coordinates: the slide along the slide axis plus the
     descent along z, nothing on the other axes; with pose terms, all six follow
     exubrush.world.kinematics.handle_coordinates.
@@ -162,6 +172,7 @@ def _add_drive(scene: Scene, handle_node) -> None:
     posed = motion.pose is not None
     start = handle_coordinates(motion, slide_axis, 0.0) if posed else None
     moving = []  # (constraint, slide factor, descent factor) of the axes that move
+    sensors = []
     for axis in range(6):
         marker = mbs.AddMarker(eii.MarkerNodeCoordinate(nodeNumber=handle_node, coordinate=axis))
         along = float(slide_axis[axis]) if axis < 3 else 0.0
@@ -176,10 +187,10 @@ def _add_drive(scene: Scene, handle_node) -> None:
         )
         if along or down or posed:
             moving.append((constraint, along, down))
-        sensors = scene.drive_sensors if axis < 3 else scene.drive_moment_sensors
         sensors.append(mbs.AddSensor(eii.SensorObject(
             objectNumber=constraint, storeInternal=True, writeToFile=False,
             outputVariableType=exu.OutputVariableType.Force)))
+    scene.drive_sensors = DriveSensors(**dict(zip(POSE_AXES, sensors, strict=True)))
 
     last = [None] * len(moving)
 
@@ -199,7 +210,7 @@ def _add_drive(scene: Scene, handle_node) -> None:
                 last[k] = offset
                 mbs.SetObjectParameter(constraint, "offset", offset)
 
-    scene.step_hooks.append(drive)
+    scene.step_hooks.add(DRIVE, drive)
 
 
 def _drawings(prepared: PreparedCase, bristles, gamma: float | None):
@@ -247,66 +258,6 @@ def surface_graphics(surface, size: float, mesh=None) -> list:
     raise ValueError(f"surface kind {surface.kind!r} has no graphics")
 
 
-def _add_contact(scene: Scene, prepared: PreparedCase, surface_marker_number, tip_body,
-                 tip_node, bristle: BristleGeometry, laws: dict):
-    """The tip's contact with the surface: the paper's law as a user function (one per tip
-    radius, cached in ``laws``), or Exudyn's built-in contact with the nearest parameters
-    (a plane only)."""
-    case, window = prepared.case, prepared.friction_window
-    if case.contact.backend == "exudyn-builtin":
-        parameters = builtin_contact_parameters(
-            case.contact,
-            buckling_load(bristle.section, bristle.material.youngs_modulus, bristle.length),
-        )
-        if window is not None:
-            parameters["dynamicFriction"] = 0.0  # blended in by a step hook
-        return add_builtin_tip_contact(scene.mbs, surface_marker_number, tip_body,
-                                       bristle.tip_radius, parameters)
-    if case.surface.kind == MESH:
-        # far below until the first step puts it on the tangent plane
-        surface_marker_number = rigid_marker(scene.mbs, scene.ground, [0.0, 0.0, -1e3])
-        scene.tangent_planes.append(TangentPlane(tip_node, surface_marker_number))
-    lagged = lags_friction_drop(case)
-    if bristle.tip_radius not in laws:
-        laws[bristle.tip_radius] = contact_user_function(
-            scene.mbs, case.contact, bristle.tip_radius, window, law_surface(case), lagged)
-    contact = add_tip_contact(scene.mbs, surface_marker_number, tip_body,
-                              laws[bristle.tip_radius], lagged)
-    if lagged:
-        scene.lagged_contacts.append(LaggedContact(contact, bristle.tip_radius))
-    if compiles_contact(case, scene.mbs, tip_node):
-        item, drops, functions = add_compiled_tip_contact(
-            scene.mbs, contact, tip_node, case.surface, case.contact, bristle.tip_radius,
-            window, lagged)
-        scene.keep_alive.append(functions)
-        scene.compiled_contacts[contact] = CompiledContact(item, drops)
-    return contact
-
-
-def compiles_contact(case, mbs, tip_node) -> bool:
-    """Whether the tip's contact is the compiled law (contact.backend "paper-compiled"
-    where it is built: a tip node with Euler parameters over a curved analytic surface);
-    elsewhere that backend is the symbolic law."""
-    return (case.contact.backend == "paper-compiled"
-            and SURFACE_KIND[case.surface.kind].compiled
-            and mbs.GetNode(tip_node)["nodeType"] == "RigidBodyEP")
-
-
-def law_surface(case):
-    """The surface the tip law is written for: None for the plane law, which a plane and a
-    mesh (in a frame on its tangent plane, moved before every step) both use, else the
-    case's analytic surface (exubrush.world.surfaces.features)."""
-    return None if SURFACE_KIND[case.surface.kind].plane_law else case.surface
-
-
-def lags_friction_drop(case) -> bool:
-    """Whether the tip contacts take the friction's drop one step behind
-    (``solver.friction_drop = "lagged"``): with the paper's law as a user function, and only
-    where the law's friction falls (μ_s > μ_d)."""
-    return (case.solver.friction_drop == "lagged" and case.contact.backend != "exudyn-builtin"
-            and drop_can_lag(case.contact))
-
-
 def _tangent_plane_refresh(mesh, surface, planes):
     """A step hook that puts each tip's contact frame on the mesh's tangent plane at the
     point closest to the tip's centre (origin there, z along the contact's outward
@@ -326,9 +277,19 @@ def _tangent_plane_refresh(mesh, surface, planes):
     return refresh
 
 
+class Handle(NamedTuple):
+    """The handle's Exudyn items: the node the drive prescribes and the body the bristles
+    are clamped to."""
+
+    node: int
+    body: int
+
+
 def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None,
                 drawn: bool = False) -> Scene:
-    """Assemble the bristles ``selection`` of ``prepared`` into a ready-to-solve system.
+    """Assemble the bristles ``selection`` of ``prepared`` into a ready-to-solve system:
+    the handle and its drive, each bristle with its tip's contact with the surface, the
+    contact between the bristles, then the step hooks.
 
     Parameters
     ----------
@@ -342,9 +303,42 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
     case = prepared.case
     indices = tuple(range(len(prepared.bristles))) if selection is None else selection
     bristles = tuple(prepared.bristles[i] for i in indices)
-    prb = prepared.prb
-    gamma = None if prb is None else prb.gamma
-    surface_drawing, handle_drawing = _drawings(prepared, bristles, gamma) if drawn else ([], [])
+    scene, handle = add_handle(prepared, bristles, drawn)
+    add_drive(scene, handle.node)
+    surface = surface_marker(scene.mbs, scene.ground, case.surface)
+    laws = {}  # tip radius -> the contact law's user function, shared by its tips
+    polylines = []
+    tips = []  # (node, sphere radius) of the tips that reach the surface
+    # each bristle's tip contact right after its bodies: the items' order is the system's
+    for index, bristle in enumerate(bristles):
+        items = add_bristle(scene, prepared, bristle, handle.body, drawn)
+        polylines.append(_polyline(bristle, items.nodes, _link_factor(prepared)))
+        if prepared.reaching[indices[index]]:
+            tips.append((items.nodes[-1], bristle.tip_radius))
+            add_surface_contact(scene, prepared, surface, index, items, laws)
+    scene.keep_alive.extend(laws.values())
+    add_contact_between(scene, case, handle.node, polylines)
+    add_step_hooks(scene, prepared, tips)
+    scene.mbs.Assemble()
+    if scene.bristle_contact is not None:
+        from exubrush.contact.exudyn_between import locate_in_system
+
+        locate_in_system(scene.mbs, scene.bristle_contact)
+    _add_line_search(scene, case.solver.line_search)
+    return scene
+
+
+def _link_factor(prepared: PreparedCase) -> float | None:
+    """The PRB link factor gamma of ``prepared``'s model, None for the DFM."""
+    return None if prepared.prb is None else prepared.prb.gamma
+
+
+def add_handle(prepared: PreparedCase, bristles, drawn: bool) -> tuple[Scene, Handle]:
+    """A new system with the ground (the surface's drawing) and the handle: a rigid block
+    at the start height, lighter for a posed head (:data:`POSED_HANDLE_LIGHTER`), with no
+    gravity; the scene that holds it and the handle's items."""
+    surface_drawing, handle_drawing = (_drawings(prepared, bristles, _link_factor(prepared))
+                                       if drawn else ([], []))
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
     ground = mbs.AddObject(eii.ObjectGround(
@@ -359,89 +353,98 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
     )
     scene = Scene(SC, mbs, prepared.motion, prepared.slide_axis, handle_inertia.Mass(),
                   bristles, ground=ground, handle_inertia=handle_inertia.InertiaCOM())
-    _add_drive(scene, handle["nodeNumber"])
-    surface = surface_marker(mbs, ground, case.surface)
-    laws = {}
-    origin = (0.0, 0.0, prepared.start_height)
-    polylines = []
-    tips = []  # (node, sphere radius) of the tips that reach the surface
-    for index, bristle in enumerate(bristles):
-        if case.model.kind == "dfm":
-            items = add_dfm_bristle(mbs, handle["bodyNumber"], bristle, bristle.material,
-                                    case.model.segments, origin, drawn, case.model.node_rotation)
-        else:
-            items = add_prb_bristle(mbs, handle["bodyNumber"], bristle, bristle.material,
-                                    prb.gamma, prb.stiffness_coefficient, origin, drawn,
-                                    case.model.node_rotation, case.model.prb_link,
-                                    case.model.prb_pivot)
-        scene.keep_alive.extend(items.user_functions)
-        polylines.append(_polyline(bristle, items.nodes, gamma))
-        scene.node_sensors.append([
-            mbs.AddSensor(eii.SensorNode(nodeNumber=n, storeInternal=True, writeToFile=False,
-                                         outputVariableType=exu.OutputVariableType.Position))
-            for n in items.nodes
-        ])
-        if prepared.reaching[indices[index]]:
-            tips.append((items.nodes[-1], bristle.tip_radius))
-            planes = len(scene.tangent_planes)
-            contact = _add_contact(scene, prepared, surface, items.tip_body, items.nodes[-1],
-                                   bristle, laws)
-            scene.contacts.append(contact)
-            frame_sensor = None
-            if len(scene.tangent_planes) > planes:  # the frame moves: record it with the force
-                frame_sensor = mbs.AddSensor(eii.SensorMarker(
-                    markerNumber=scene.tangent_planes[-1].marker, storeInternal=True,
-                    writeToFile=False, outputVariableType=exu.OutputVariableType.RotationMatrix))
-            compiled = contact in scene.compiled_contacts
-            if compiled:  # an object, not a connector
-                sensor = eii.SensorBody(bodyNumber=scene.compiled_contacts[contact].item,
-                                        storeInternal=True, writeToFile=False,
-                                        outputVariableType=exu.OutputVariableType.Force)
-            else:
-                sensor = eii.SensorObject(objectNumber=contact, storeInternal=True,
-                                          writeToFile=False,
-                                          outputVariableType=contact_force_output(case))
-            scene.contact_sensors.append(ContactSensor(index, mbs.AddSensor(sensor),
-                                                       frame_sensor, compiled))
-    scene.keep_alive.extend(laws.values())
-    if scene.tangent_planes:
-        scene.step_hooks.append(_tangent_plane_refresh(prepared.mesh, case.surface,
-                                                       scene.tangent_planes))
-    if scene.lagged_contacts:  # after the tangent planes: it reads the contacts' frames
-        drops = {contact: law.drops for contact, law in scene.compiled_contacts.items()}
-        scene.step_hooks.append(lagged_drop_hook(scene.lagged_contacts, case.contact,
-                                                 law_surface(case), drops))
-    window = prepared.friction_window
-    if case.contact.backend == "exudyn-builtin" and window is not None and scene.contacts:
-        scene.step_hooks.append(
-            builtin_friction_blend(scene.contacts, case.contact.dynamic_friction, window))
-    if case.contact.between_bristles and len(bristles) > 1:
-        # imported here: it loads numba, which a scene of bristles apart does not need
-        from exubrush.contact.exudyn_between import add_bristle_contact, contact_refresh
+    return scene, Handle(handle["nodeNumber"], handle["bodyNumber"])
 
-        scene.bristle_contact = add_bristle_contact(
-            mbs, handle["nodeNumber"], polylines,
-            [0.5 * max(b.width, b.height) for b in bristles], case.contact.bristles)
-        scene.keep_alive.append(scene.bristle_contact)
-        scene.step_hooks.append(_contact_sampler(scene.bristle_contact, case.output.interval))
+
+def add_bristle(scene: Scene, prepared: PreparedCase, bristle: BristleGeometry,
+                 handle_body: int, drawn: bool):
+    """One bristle of ``prepared``'s model clamped to the handle body, and a sensor of each
+    of its nodes' positions; its Exudyn items (exubrush.models.assembly.BristleItems)."""
+    case, mbs = prepared.case, scene.mbs
+    origin = (0.0, 0.0, prepared.start_height)
+    if case.model.kind == "dfm":
+        items = add_dfm_bristle(mbs, handle_body, bristle, bristle.material,
+                                case.model.segments, origin, drawn, case.model.node_rotation)
+    else:
+        prb = prepared.prb
+        items = add_prb_bristle(mbs, handle_body, bristle, bristle.material, prb.gamma,
+                                prb.stiffness_coefficient, origin, drawn,
+                                case.model.node_rotation, case.model.prb_link,
+                                case.model.prb_pivot)
+    scene.keep_alive.extend(items.user_functions)
+    scene.node_sensors.append([
+        mbs.AddSensor(eii.SensorNode(nodeNumber=n, storeInternal=True, writeToFile=False,
+                                     outputVariableType=exu.OutputVariableType.Position))
+        for n in items.nodes
+    ])
+    return items
+
+
+def add_surface_contact(scene: Scene, prepared: PreparedCase, surface, index: int, items,
+                        laws: dict) -> None:
+    """The contact of the tip of the scene's bristle ``index`` (its Exudyn ``items``) with
+    the surface (marker ``surface``), made by its back end (exubrush.contact.tip_backends;
+    ``laws``: the user functions by tip radius, shared by the tips), and the sensors that
+    record its force and, where it moves, its frame."""
+    mbs = scene.mbs
+    site = TipSite(mbs, scene.ground, surface, items.tip_body, items.nodes[-1],
+                   scene.bristles[index])
+    backend = tip_backend(prepared.case, site)
+    contact = backend.add(site, prepared.case, prepared.friction_window, laws)
+    scene.contacts.append(contact)
+    frame_sensor = None
+    if contact.frame_marker is not None:  # the frame moves: record it with the force
+        frame_sensor = mbs.AddSensor(eii.SensorMarker(
+            markerNumber=contact.frame_marker, storeInternal=True, writeToFile=False,
+            outputVariableType=exu.OutputVariableType.RotationMatrix))
+    scene.contact_sensors.append(ContactSensor(
+        index, mbs.AddSensor(backend.force_sensor(contact)), frame_sensor,
+        contact.compiled is not None))
+
+
+def add_contact_between(scene: Scene, case, handle_node: int, polylines: list) -> None:
+    """The contact between the scene's bristles (contact.between_bristles), where there are
+    two or more, on the capsule chains ``polylines`` (:func:`_polyline`)."""
+    if not (case.contact.between_bristles and len(scene.bristles) > 1):
+        return
+    # imported here: it loads numba, which a scene of bristles apart does not need
+    from exubrush.contact.exudyn_between import add_bristle_contact
+
+    scene.bristle_contact = add_bristle_contact(
+        scene.mbs, handle_node, polylines,
+        [0.5 * max(b.width, b.height) for b in scene.bristles], case.contact.bristles)
+    scene.keep_alive.append(scene.bristle_contact)
+
+
+def add_step_hooks(scene: Scene, prepared: PreparedCase, tips: list) -> None:
+    """The hooks the solve calls before every step, each in its phase
+    (exubrush.run.step_hooks; the drive's and the line search's are added with them): the
+    mesh's tangent planes, the friction's lagged drop or blend, the contact between
+    bristles' sampling, the Jacobian's renewal, the step cap (``tips``: (node, sphere
+    radius) of the tips that reach the surface) and the contact between bristles'
+    candidate pairs."""
+    case, hooks, touching = prepared.case, scene.step_hooks, scene.bristle_contact
+    if scene.tangent_planes:
+        hooks.add(SURFACES, _tangent_plane_refresh(prepared.mesh, case.surface,
+                                                   scene.tangent_planes))
+    friction = BACKENDS[case.contact.backend].friction_hook(scene.contacts, case,
+                                                            prepared.friction_window)
+    if friction is not None:
+        hooks.add(FRICTION, friction)
     # touching groups renew the Jacobian at every step attempt anyway (solver.dynamic_settings)
-    if scene.bristle_contact is None and linear_solver(case.solver) == "EigenSparse":
-        scene.step_hooks.append(fresh_jacobian_after_step_change())
+    if touching is None and linear_solver(case.solver) == "EigenSparse":
+        hooks.add(JACOBIAN, fresh_jacobian_after_step_change())
     terms = term_step_cap(case, scene.motion)
-    if terms is not None and scene.bristle_contact is None:  # touching: renewed anyway
-        scene.step_hooks.append(fresh_jacobian_while(lambda t: terms(t) is not None))
+    if terms is not None and touching is None:
+        hooks.add(JACOBIAN, fresh_jacobian_while(lambda t: terms(t) is not None))
     cap = motion_step_cap(case, scene.motion, tips)
     if cap is not None:
-        scene.step_hooks.append(cap)
-    if scene.bristle_contact is not None:  # after the step cap: it reads the step's cap
-        scene.step_hooks.append(contact_refresh(scene.bristle_contact, case.solver.step_size))
-    mbs.Assemble()
-    if scene.bristle_contact is not None:
-        from exubrush.contact.exudyn_between import locate_in_system
+        hooks.add(STEP_SIZE, cap)
+    if touching is not None:
+        from exubrush.contact.exudyn_between import contact_refresh
 
-        locate_in_system(mbs, scene.bristle_contact)
-    _add_line_search(scene, case.solver.line_search)
-    return scene
+        hooks.add(SAMPLING, _contact_sampler(touching, case.output.interval))
+        hooks.add(CANDIDATES, contact_refresh(touching, case.solver.step_size))
 
 
 def _add_line_search(scene: Scene, setting: str) -> None:
@@ -450,8 +453,7 @@ def _add_line_search(scene: Scene, setting: str) -> None:
     the group, the search's Python next to nothing), off elsewhere: one bristle's Jacobian
     is cheap, and on the tooth row 45 % fewer Jacobians saved 2 % of CPU time while the
     snaps' paths moved (decisions/0001); off where the nodes' rotations are on the Lie
-    group. "after-cut" runs its switch first among the step hooks, so that the step cap
-    stays the last (it reads the cap the last step set)."""
+    group. "after-cut" runs its switch in the step hooks' phase AFTER_CUT."""
     if setting == "auto":  # the nodes are looked at only where the search would run
         if scene.bristle_contact is None or has_lie_group_nodes(scene.mbs):
             return
@@ -462,7 +464,7 @@ def _add_line_search(scene: Scene, setting: str) -> None:
     if setting == "always":
         scene.mbs.SetPreNewtonResidualUserFunction(scene.line_search)
     else:
-        scene.step_hooks.insert(0, after_step_cut(scene.line_search))
+        scene.step_hooks.add(AFTER_CUT, after_step_cut(scene.line_search))
 
 
 def _polyline(bristle: BristleGeometry, nodes, gamma: float | None) -> list:

@@ -197,7 +197,7 @@ class _StepGuard:
             return INTERRUPTED
         if not np.all(np.isfinite(mbs.systemData.GetODE2Coordinates())):
             return f"non-finite state at t = {t:.6g} s"
-        pressing = float(np.max(np.abs(mbs.GetSensorValues(self.scene.drive_sensors[2]))))
+        pressing = float(np.max(np.abs(mbs.GetSensorValues(self.scene.drive_sensors.z))))
         if pressing > self.bound:
             return beyond_bound_message(self.model, t, pressing, self.bound)
         return ""
@@ -255,8 +255,8 @@ def _read_out(scene: Scene) -> _Readout:
 
     touching = scene.bristle_contact
     readout = _Readout(
-        drive=[stored(s) for s in scene.drive_sensors],
-        turning=[stored(s) for s in scene.drive_moment_sensors],
+        drive=[stored(s) for s in scene.drive_sensors.force],
+        turning=[stored(s) for s in scene.drive_sensors.moment],
         histories=[[stored(s) for s in sensors] for sensors in scene.node_sensors],
         contact_sensors=list(scene.contact_sensors),
         contact_rows=[(stored(s.force), None if s.frame is None else stored(s.frame))

@@ -1,6 +1,6 @@
 """The drive: the handle follows the prescribed motion, also for a measured slide.
 
-The offsets are set before every step (scene._add_drive), not by an offset user function
+The offsets are set before every step (scene.add_drive), not by an offset user function
 called in every Newton iteration; the solver imposes them at the step's end. Here the
 handle's solved coordinates are read back and compared with the slide and descent
 prescribed for the same instants, within what recording them costs. Against the former

@@ -3,9 +3,10 @@
 import numpy as np
 import pytest
 
+from exubrush.contact.tip_backends import lags_friction_drop
 from exubrush.parameters.io import load_case
 from exubrush.run.prepared import prepare
-from exubrush.run.scene import build_scene, lags_friction_drop
+from exubrush.run.scene import build_scene
 from exubrush.simulation import simulate
 
 # one bristle, approach and half a period of parallel brushing: a stroke, its reversal and
@@ -54,4 +55,4 @@ def test_which_scenes_lag_the_drop(overrides, lags):
     case = load_case("orthogonal", ["head.rows=1", "head.columns=1", *overrides])
     assert lags_friction_drop(case) == lags
     scene = build_scene(prepare(case), (0,))
-    assert len(scene.lagged_contacts) == lags
+    assert sum(contact.lagged for contact in scene.contacts) == lags

@@ -95,8 +95,8 @@ def _bare_handle_residuals(path, step):
         rows = [np.asarray(scene.mbs.GetSensorStoredData(s)) for s in sensors]
         return rows[0][:, 0], np.column_stack([r[:, 1] for r in rows])
 
-    time, reaction = recorded(scene.drive_sensors)
-    _, drive_moment = recorded(scene.drive_moment_sensors)
+    time, reaction = recorded(scene.drive_sensors.force)
+    _, drive_moment = recorded(scene.drive_sensors.moment)
     motion = prepared.motion
     _, _, acceleration = handle_history(motion, prepared.slide_axis, time)
     angles, rates, turning = handle_angles(motion, time)

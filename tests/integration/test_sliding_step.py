@@ -12,6 +12,7 @@ from exubrush.parameters.io import load_case
 from exubrush.run.prepared import prepare
 from exubrush.run.scene import build_scene
 from exubrush.run.solve import group_settings
+from exubrush.run.step_hooks import STEP_SIZE
 from exubrush.run.step_policy import STRIBECK_MARGIN, tips_on_flat_tops
 from exubrush.simulation import simulate
 from exubrush.world.surfaces import orientation, to_surface_frame
@@ -62,6 +63,7 @@ def test_the_step_grows_only_where_the_surface_allows(overrides, capped, tmp_pat
     scene = build_scene(prepared, (0,))
     held = build_scene(prepare(load_case("orthogonal", [
         *ONE_BRISTLE, *overrides, "solver.sliding_step_factor=1"])), (0,))
+    assert len(scene.step_hooks.of(STEP_SIZE)) == capped
     assert len(scene.step_hooks) == len(held.step_hooks) + capped
 
 
@@ -127,7 +129,7 @@ def _cap_in_a_stroke(surface_x: float) -> float:
     scene = build_scene(prepared, (0,))
     iteration = SimpleNamespace(maxStepSize=0.0)
     scene.mbs.sys["dynamicSolver"] = SimpleNamespace(it=iteration)
-    scene.step_hooks[-1](scene.mbs, scene.motion.slide_start + 0.1)
+    scene.step_hooks.of(STEP_SIZE)[-1](scene.mbs, scene.motion.slide_start + 0.1)
     return iteration.maxStepSize
 
 
@@ -197,7 +199,7 @@ def test_the_cap_drops_the_look_ahead_before_the_speed_falls():
         STRIBECK_MARGIN * case.contact.dynamic_velocity
     slows = scene.motion.slide_start + period / (2 * np.pi) * np.arccos(fraction)
     margin = 1.5 * case.solver.step_size  # the speed is sampled every step_size
-    scene.step_hooks[-1](scene.mbs, slows - lead - margin)
+    scene.step_hooks.of(STEP_SIZE)[-1](scene.mbs, slows - lead - margin)
     assert iteration.maxStepSize == large
-    scene.step_hooks[-1](scene.mbs, slows - lead + margin)
+    scene.step_hooks.of(STEP_SIZE)[-1](scene.mbs, slows - lead + margin)
     assert iteration.maxStepSize == case.solver.step_size

@@ -36,10 +36,10 @@ def floor_group(prepared: PreparedCase, selection: tuple[int, ...]) -> dict:
     stepping alone) and solver counts."""
     scene = build_scene(prepared, selection)
     for contact in scene.contacts:
-        scene.mbs.SetObjectParameter(contact, "activeConnector", False)
-    for compiled in scene.compiled_contacts.values():  # contact.backend "paper-compiled"
-        scene.mbs.SetObjectParameter(compiled.item, "forceUserFunction", 0)
-        scene.mbs.SetObjectParameter(compiled.item, "jacobianUserFunction", 0)
+        scene.mbs.SetObjectParameter(contact.connector, "activeConnector", False)
+        if contact.compiled is not None:  # contact.backend "paper-compiled"
+            scene.mbs.SetObjectParameter(contact.compiled.item, "forceUserFunction", 0)
+            scene.mbs.SetObjectParameter(contact.compiled.item, "jacobianUserFunction", 0)
     settings = group_settings(prepared, scene, selection)
 
     scene.mbs.SetPreStepUserFunction(scene.run_step_hooks)

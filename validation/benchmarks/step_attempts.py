@@ -62,7 +62,7 @@ def watch_newton(scene, surface, radius: float, window: tuple[float, float]) -> 
     import exudyn as exu
 
     output = exu.OutputVariableType
-    contact = scene.contacts[0]
+    contact = scene.contacts[0].connector
 
     def show(mbs, t, iteration, _discontinuous):
         if not window[0] <= t <= window[1]:
