@@ -47,8 +47,8 @@ from exubrush.world.clearance import (
 )
 from exubrush.world.kinematics import SLIDE_AXES
 from exubrush.world.mesh import MeshError, MeshSurface, read_mesh
-from exubrush.world.motion import HeadMotion, TabulatedSlide, head_motion
-from exubrush.world.pose import with_pose
+from exubrush.world.motion import HeadMotion, head_motion, with_pose
+from exubrush.world.slide import TabulatedSlide
 from exubrush.world.surfaces import height as surface_height
 from exubrush.world.surfaces import highest_near, to_surface_frame
 

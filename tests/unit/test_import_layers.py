@@ -9,6 +9,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import grimp
+
 import exubrush
 
 ROOT = Path(__file__).parents[2]  # where pyproject.toml holds the contracts
@@ -27,6 +29,56 @@ def test_import_contracts_hold():
     script = ("import sys; from importlinter.cli import lint_imports; "
               "sys.exit(lint_imports(no_cache=True))")
     assert "0 broken" in fresh_python(script, cwd=ROOT)
+
+
+def import_edges() -> dict[str, set[str]]:
+    """Each exubrush module and the exubrush modules it imports, type-only
+    (``if TYPE_CHECKING``) and function-local imports counted (the import-linter
+    contracts see the same graph)."""
+    graph = grimp.build_graph("exubrush", include_external_packages=False, cache_dir=None)
+    return {module: set(graph.find_modules_directly_imported_by(module))
+            for module in graph.modules}
+
+
+def package_edges(edges: dict[str, set[str]]) -> dict[str, set[str]]:
+    """The same imports between packages (``exubrush.run``) and top-level modules
+    (``exubrush.cli``); the package's own ``__init__`` (the lazy top-level API) left out."""
+    def package(module: str) -> str:
+        return ".".join(module.split(".")[:2])
+
+    found: dict[str, set[str]] = {}
+    for importer, imported in edges.items():
+        if importer == "exubrush":
+            continue
+        targets = {package(m) for m in imported} - {"exubrush", package(importer)}
+        found.setdefault(package(importer), set()).update(targets)
+    return found
+
+
+def circles(edges: dict[str, set[str]]) -> list[tuple[str, str]]:
+    """Every import ``(a, b)`` of ``edges`` from which ``a`` is reached again."""
+    def reached(start: str) -> set[str]:
+        seen: set[str] = set()
+        todo = [start]
+        while todo:
+            for nxt in edges.get(todo.pop(), ()):
+                if nxt not in seen:
+                    seen.add(nxt)
+                    todo.append(nxt)
+        return seen
+
+    return sorted((a, b) for a, targets in edges.items() for b in targets if a in reached(b))
+
+
+def test_circles_finds_a_circle_and_only_it():
+    edges = {"a": {"b"}, "b": {"c"}, "c": {"a", "d"}, "d": set()}
+    assert circles(edges) == [("a", "b"), ("b", "c"), ("c", "a")]
+    assert package_edges({"exubrush.x.m": {"exubrush.y.n", "exubrush.x.k"},
+                          "exubrush": {"exubrush.x.m"}}) == {"exubrush.x": {"exubrush.y"}}
+
+
+def test_no_circle_between_modules():
+    assert circles(import_edges()) == []
 
 
 def test_importing_every_module_keeps_the_matplotlib_backend():

@@ -15,8 +15,9 @@ from exubrush.run.budget import term_segments, term_steps, term_windows
 from exubrush.run.prepared import prepare
 from exubrush.run.step_policy import term_step_cap
 from exubrush.world.kinematics import handle_angles, handle_coordinates, handle_kinematics
-from exubrush.world.motion import HeadMotion, RestingSlide
-from exubrush.world.pose import SineTerm, with_pose
+from exubrush.world.motion import HeadMotion, with_pose
+from exubrush.world.pose import SineTerm
+from exubrush.world.slide import RestingSlide
 
 SONIC = {"axis": "y", "amplitude": "0.3 mm", "frequency": "260 Hz"}
 
