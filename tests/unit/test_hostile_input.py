@@ -173,7 +173,7 @@ def test_a_stepped_slide_never_leaves_the_range_of_its_data():
 
 
 def test_a_changed_slide_csv_is_never_resumed_into(tmp_path):
-    from exubrush.run.rundir import RunDirectory, RunDirectoryError
+    from exubrush.output.rundir import RunDirectory, RunDirectoryError
 
     first = _csv_case(tmp_path, SLIDE.encode())
     RunDirectory(tmp_path / "run", first)

@@ -148,7 +148,7 @@ def test_a_posed_run_stopped_before_its_first_sample_has_no_angles(tmp_path):
 
 
 def test_a_posed_run_interrupted_before_any_sample_saves_its_record_only(tmp_path):
-    from exubrush.run.assemble import RunFacts, assemble_results
+    from exubrush.output.assemble import RunFacts, assemble_results
 
     prepared = prepare(load_case(_case_file(tmp_path, (
         '[[motion.sine]]\naxis = "rz"\nangle = "5 deg"\nfrequency = "50 Hz"\n'))))
