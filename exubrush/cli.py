@@ -97,7 +97,7 @@ def run(case, model, segments, periods, out, overrides, overwrite, quiet, preset
     prepared = _prepared(case, [*preset_overrides(preset), *filter(None, shortcuts),
                                 *overrides])
     from exubrush.execution.signals import signals_redirected
-    from exubrush.run.rundir import RunDirectory, RunDirectoryError, default_directory
+    from exubrush.output.rundir import RunDirectory, RunDirectoryError, default_directory
     from exubrush.simulation import simulate
 
     directory = Path(out or default_directory(prepared.case))
@@ -241,7 +241,7 @@ def sweep(sweep_file, out, scheduler, workers, retry_failed, quiet, example):
     if sweep_file is None:
         _fail("give a sweep file (exubrush sweep --example prints one)")
     from exubrush.execution.signals import signals_redirected
-    from exubrush.run.rundir import RunDirectoryError
+    from exubrush.output.rundir import RunDirectoryError
     from exubrush.sweep.plan import SweepError, read_sweep
     from exubrush.sweep.runner import check_folder, default_folder, prepare_runs, run_sweep
 

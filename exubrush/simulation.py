@@ -19,11 +19,11 @@ import time
 from exubrush.execution import Executor, SolveTask
 from exubrush.execution.local import local_executor
 from exubrush.execution.progress import SimulatedTimeBar
+from exubrush.output.assemble import RunFacts, assemble_results
 from exubrush.output.results import Results
+from exubrush.output.rundir import RunDirectory
 from exubrush.parameters.case import Case
-from exubrush.run.assemble import RunFacts, assemble_results
 from exubrush.run.prepared import PreparedCase, prepare
-from exubrush.run.rundir import RunDirectory
 
 
 def simulate(case: Case | PreparedCase, progress: bool = True, workers: int | None = None,

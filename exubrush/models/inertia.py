@@ -6,7 +6,7 @@ spring-damper, half a segment from the root (exubrush.models.dfm), the PRB at th
 characteristic pivot (exubrush.models.prb). The piece from the root to there is part of
 the handle, the prescribed body, and in no body of the Exudyn system: its mass enters no
 drive reaction, so the head's force and moment add its inertia
-(exubrush.run.assemble.carried_root_pieces).
+(exubrush.output.assemble.carried_root_pieces).
 """
 
 from __future__ import annotations

@@ -82,7 +82,7 @@ class Results:
     (exubrush.output.viewer).
 
     ``built_case`` is the :class:`Case` the run solved, kept in memory where one exists (the
-    results of a run just made, exubrush.run.assemble); None: :meth:`case` builds it from
+    results of a run just made, exubrush.output.assemble); None: :meth:`case` builds it from
     ``metadata["parameters"]`` once and keeps it (a change to that dict afterwards is not
     seen).
 

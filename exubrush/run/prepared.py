@@ -47,8 +47,8 @@ from exubrush.world.clearance import (
 )
 from exubrush.world.kinematics import SLIDE_AXES
 from exubrush.world.mesh import MeshError, MeshSurface, read_mesh
-from exubrush.world.motion import HeadMotion, TabulatedSlide, head_motion
-from exubrush.world.pose import with_pose
+from exubrush.world.motion import HeadMotion, head_motion, with_pose
+from exubrush.world.slide import TabulatedSlide
 from exubrush.world.surfaces import height as surface_height
 from exubrush.world.surfaces import highest_near, to_surface_frame
 
@@ -103,7 +103,7 @@ class PreparedCase:
         What the run will cost (exubrush.run.budget), within ``case.limits``.
     inputs : tuple of (str, str)
         (key, SHA-256 of what was read from it) for every input file the case names, so
-        that a resume can tell a changed file from the same one (exubrush.run.rundir).
+        that a resume can tell a changed file from the same one (exubrush.output.rundir).
     warnings : tuple of str
         What the user should know before the run (e.g. a slide CSV faster than the step).
     reaching : tuple of bool

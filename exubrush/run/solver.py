@@ -187,7 +187,7 @@ def record_coordinates(settings: exu.SimulationSettings, path: str, period: floa
 
 def static_settings(load_steps: int, linear_solver: str = "EXUdense") -> exu.SimulationSettings:
     """Static Newton settings for the convergence references (exubrush.statics,
-    exubrush.reference.shear_beam): the load in ``load_steps`` equal increments with
+    exubrush.shear_beam): the load in ``load_steps`` equal increments with
     adaptive steps, Newton tolerances 1e-8 relative and 1e-10 absolute (tighter ones make
     Exudyn's static Newton solve fail, measured on the shear-beam reference), at most 50
     iterations per increment."""

@@ -7,7 +7,7 @@ one summary-PARAMETER.png per swept parameter).
 
 Resuming: the same sweep in the same folder skips the runs whose run.json says completed,
 and inside unfinished runs the bristle groups already in their checkpoint (the run
-directory's own resume, exubrush.run.rundir). Failed runs are kept as they are unless asked
+directory's own resume, exubrush.output.rundir). Failed runs are kept as they are unless asked
 to retry them. A folder that holds another sweep, or files exubrush did not write, is
 refused before anything is written.
 
@@ -29,12 +29,9 @@ import numpy as np
 
 from exubrush.execution import Executor, SolveTask
 from exubrush.execution.progress import SimulatedTimeBar
+from exubrush.output.assemble import RunFacts, assemble_results
 from exubrush.output.results import REMAKE, ResultsError, read_results
-from exubrush.parameters.case import Case
-from exubrush.parameters.fields import ParameterError, describe_key
-from exubrush.run.assemble import RunFacts, assemble_results
-from exubrush.run.prepared import PreparedCase, prepare
-from exubrush.run.rundir import (
+from exubrush.output.rundir import (
     RunDirectory,
     case_fingerprint,
     recorded_status,
@@ -42,6 +39,9 @@ from exubrush.run.rundir import (
     safe_name,
     unusable_directory,
 )
+from exubrush.parameters.case import Case
+from exubrush.parameters.fields import ParameterError, describe_key
+from exubrush.run.prepared import PreparedCase, prepare
 from exubrush.sweep.plan import SweepError, SweepPlan, SweepRun
 from exubrush.sweep.plots import plot_summary
 from exubrush.sweep.summary import METRICS, run_metrics, sensitivities, write_parquet
@@ -95,7 +95,7 @@ def default_folder(plan: SweepPlan) -> Path:
 
 def sweep_identity(plan: SweepPlan, prepared: list[PreparedCase]) -> dict:
     """What makes two sweeps the same: every run's name and identity as a single run's
-    resume knows it (exubrush.run.rundir.case_fingerprint: its parameters but the limits,
+    resume knows it (exubrush.output.rundir.case_fingerprint: its parameters but the limits,
     and the data read from every input file, e.g. a pose CSV, a mesh), hashed in
     ``fingerprint``; ``inputs`` keeps each run's input-file hashes, to say which changed."""
     runs = [[run.name, case_fingerprint(case)] for run, case in zip(plan.runs, prepared,

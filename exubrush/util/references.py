@@ -13,10 +13,7 @@ contact between bristles is exubrush's own law, with no published source.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
-
-if TYPE_CHECKING:  # reads the case's attributes only: no import at run time
-    from exubrush.parameters.case import Case
+from typing import Protocol
 
 
 @dataclass(frozen=True)
@@ -80,7 +77,35 @@ LITERATURE = (PAPER, HOWELL, TIMOSHENKO_GERE)
 """The references that are publications (the others point into the paper or the docs)."""
 
 
-def run_references(case: Case) -> list[dict[str, str]]:
+class _ModelChoice(Protocol):
+    """A case's ``[model]``, as far as the references depend on it."""
+
+    @property
+    def kind(self) -> str: ...
+
+    @property
+    def prb_link(self) -> str: ...
+
+
+class _ContactChoice(Protocol):
+    """A case's ``[contact]``, as far as the references depend on it."""
+
+    @property
+    def between_bristles(self) -> bool: ...
+
+
+class CaseChoices(Protocol):
+    """What :func:`run_references` reads of a case (an
+    :class:`exubrush.parameters.case.Case`, which sits above this module)."""
+
+    @property
+    def model(self) -> _ModelChoice: ...
+
+    @property
+    def contact(self) -> _ContactChoice: ...
+
+
+def run_references(case: CaseChoices) -> list[dict[str, str]]:
     """The references a run of ``case`` relied on, as run.json records them: the paper and
     its contact laws always (every tip touches the surface), Howell for PRB and Timoshenko
     & Gere for its buckling link, exubrush's law where bristles touch each other."""

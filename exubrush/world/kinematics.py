@@ -135,7 +135,7 @@ def _turning(angles: np.ndarray, rates: np.ndarray, accelerations: np.ndarray):
 
 class CarriedLoad(NamedTuple):
     """A rigid load that rides on the handle: the bristles' root pieces, part of the
-    prescribed body but in no body of the Exudyn system (exubrush.run.assemble).
+    prescribed body but in no body of the Exudyn system (exubrush.output.assemble).
 
     Attributes
     ----------

@@ -30,18 +30,14 @@ from __future__ import annotations
 import hashlib
 import math
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 import numpy as np
 
 from exubrush.parameters.choices import POSE_AXES as AXES
 from exubrush.util.tables import read_unit_table
-from exubrush.world.motion import HeadMotion, TabulatedSlide, smooth_step
-
-if TYPE_CHECKING:
-    from exubrush.parameters.case import Motion
+from exubrush.world.slide import TabulatedSlide, smooth_step
 
 # internal unit of each pose coordinate
 UNITS = {"x": "mm", "y": "mm", "z": "mm", "rx": "rad", "ry": "rad", "rz": "rad"}
@@ -91,7 +87,7 @@ class SineTerm:
     start <= t <= end and 0 outside.
 
     The envelope e rises from 0 to 1 over ``ramp`` seconds after ``start`` along the
-    quintic smooth step of :func:`exubrush.world.motion.smooth_step` and falls back to 0
+    quintic smooth step of :func:`exubrush.world.slide.smooth_step` and falls back to 0
     over the ``ramp`` seconds before ``end`` (none with an infinite end), so value, rate and
     acceleration are continuous. With ``ramp`` = 0 there is no envelope: the rate jumps at
     ``start`` (a sine starts at its peak rate) and at a finite ``end``, and a nonzero phase
@@ -205,7 +201,7 @@ class SineTerm:
 
 class TableTerm:
     """Pose coordinates from samples, each interpolated by a monotone cubic (PCHIP) as
-    :class:`exubrush.world.motion.TabulatedSlide` does: never outside the range of its
+    :class:`exubrush.world.slide.TabulatedSlide` does: never outside the range of its
     data, velocity continuous, acceleration jumping at the samples.
 
     Each coordinate starts at 0 (its first sample is taken as the origin) at ``start`` [s]
@@ -395,26 +391,3 @@ class HeadPose:
             rate[:3] + np.cross(omega, arm),
             acceleration[:3] + np.cross(alpha, arm) + np.cross(omega, np.cross(omega, arm)),
         )
-
-
-def with_pose(head: HeadMotion, motion: Motion) -> HeadMotion:
-    """``head`` with the pose terms of a case's ``[motion]`` (``sine`` entries and
-    ``pose_csv``) added, their times counted from the slide's start, about
-    ``motion.pivot`` (head frame, mm); ``head`` itself where there are none.
-
-    Raises ValueError naming the pose CSV if it cannot be read.
-    """
-    if not motion.posed:
-        return head
-    terms: list[SineTerm | TableTerm] = []
-    for entry in motion.sine:
-        start = head.slide_start + entry.start
-        terms.append(SineTerm(
-            axis=entry.axis, amplitude=entry.size, frequency=entry.frequency,
-            phase=entry.phase, start=start,
-            end=start + entry.duration if entry.duration else math.inf,
-            ramp=entry.ramp_cycles / entry.frequency,
-        ))
-    if motion.pose_csv:
-        terms.append(read_pose_csv(motion.pose_csv, head.slide_start + motion.pose_csv_start))
-    return replace(head, pose=HeadPose(terms, motion.pivot))

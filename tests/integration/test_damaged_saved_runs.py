@@ -36,9 +36,9 @@ set = ["head.rows=1", "head.columns=2"]
 def solved(tmp_path_factory):
     """``saved``: the run's result directory; ``resumable``: its checkpoint alone (as a run
     stopped after every group finished leaves it)."""
+    from exubrush.output.rundir import RunDirectory
     from exubrush.parameters.io import load_case
     from exubrush.run.prepared import prepare
-    from exubrush.run.rundir import RunDirectory
     from exubrush.simulation import simulate
 
     root = tmp_path_factory.mktemp("damaged")
@@ -384,7 +384,7 @@ def test_a_resumed_sweep_says_how_to_solve_a_run_with_a_poisoned_group_anew(solv
     """A sweep has no --overwrite: a refused checkpoint of one of its runs says to delete
     that run's folder."""
     from exubrush.execution.local import SerialExecutor
-    from exubrush.run.rundir import RunDirectoryError
+    from exubrush.output.rundir import RunDirectoryError
     from exubrush.sweep.plan import read_sweep
     from exubrush.sweep.runner import claim_folder, prepare_runs, run_sweep
 
@@ -504,7 +504,7 @@ def prepared_case():
 @given(name=st.sampled_from(["group-00000.npz", "group-00001.npz"]), damage=damages)
 def test_any_damaged_checkpoint_group_is_read_or_refused_in_one_line(
         solved, prepared_case, tmp_path, name, damage):
-    from exubrush.run.rundir import RunDirectory, RunDirectoryError
+    from exubrush.output.rundir import RunDirectory, RunDirectoryError
 
     run = tmp_path / "resumable"
     shutil.rmtree(run, ignore_errors=True)
@@ -554,8 +554,8 @@ def test_any_poisoned_array_is_refused_in_one_line_or_changes_nothing(
     that changes nothing)."""
     from exubrush.output.frames import load_shapes
     from exubrush.output.results import ResultsError, read_results
+    from exubrush.output.rundir import RunDirectory, RunDirectoryError
     from exubrush.output.viewer import prepare
-    from exubrush.run.rundir import RunDirectory, RunDirectoryError
 
     name = data.draw(st.sampled_from(ARRAYS[file]))
     poison, at = data.draw(poisons), data.draw(st.floats(0.0, 1.0))

@@ -9,7 +9,7 @@ base_force_response and base_moment_response, five stiffness-damped modes).
 
 Each DFM filament's half segment at the root rides on the handle in no body of the system
 (exubrush.models.dfm.root_piece_length): before its inertia was added
-(exubrush.run.assemble.carried_root_pieces) the force was 7.0 % low with 6 segments (3.4 %
+(exubrush.output.assemble.carried_root_pieces) the force was 7.0 % low with 6 segments (3.4 %
 with 12) at r = 0.5, the turned filament's moment about the axis as much; after, 0.08 %
 low (0.03 % high with 12), the moments 0.06 % low (0.05 % high).
 
@@ -27,6 +27,7 @@ from exubrush.models.dfm import add_dfm_bristle
 from exubrush.models.inertia import dfm_root_piece, prb_root_piece, root_piece_inertia
 from exubrush.models.prb import add_prb_bristle
 from exubrush.models.sections import section_properties
+from exubrush.output.assemble import carried_root_pieces
 from exubrush.parameters.case import BUILT_IN_MATERIALS
 from exubrush.parameters.io import load_case
 from exubrush.reference.cantilever_vibration import (
@@ -35,7 +36,6 @@ from exubrush.reference.cantilever_vibration import (
     first_bending_frequency,
     stiffness_proportional_damping_ratio,
 )
-from exubrush.run.assemble import carried_root_pieces
 from exubrush.run.prepared import prepare
 from exubrush.run.solve import solve_group
 from exubrush.simulation import simulate

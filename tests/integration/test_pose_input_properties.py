@@ -107,7 +107,7 @@ def pose_tables(draw):
     rows = draw(st.integers(2, 6))
     time_unit, time_factor = draw(st.sampled_from(sorted(TIMES.items())))
     # at least 10 ms between rows, values within 100 mm and 3 rad: well inside the
-    # speeds and reaches a brush head is held to (exubrush.world.motion.TABLE_RATE)
+    # speeds and reaches a brush head is held to (exubrush.world.slide.TABLE_RATE)
     steps = draw(st.lists(st.floats(0.01, 1.0), min_size=rows - 1, max_size=rows - 1))
     times = np.concatenate([[0.0], np.cumsum(steps)]) / time_factor
     axes = draw(st.lists(st.sampled_from(AXES), min_size=1, max_size=3, unique=True))

@@ -160,9 +160,9 @@ def test_a_single_process_run_stops_cleanly_on_ctrl_c_or_kill(tmp_path, signal_n
 
 
 def test_a_resumed_group_keeps_the_coordinates_for_the_viewer(tmp_path):
+    from exubrush.output.rundir import RunDirectory
     from exubrush.parameters.io import load_case
     from exubrush.run.prepared import prepare
-    from exubrush.run.rundir import RunDirectory
     from exubrush.run.solution import GroupSolution, SolverStatistics
 
     case = prepare(load_case("orthogonal", ["output.solution_file=true"]))
@@ -190,9 +190,9 @@ def test_a_resumed_group_keeps_the_coordinates_for_the_viewer(tmp_path):
 
 
 def test_a_checkpoint_of_another_exubrush_version_is_refused(tmp_path):
+    from exubrush.output.rundir import CODE_FILE, RunDirectory, RunDirectoryError
     from exubrush.parameters.io import load_case
     from exubrush.run.prepared import prepare
-    from exubrush.run.rundir import CODE_FILE, RunDirectory, RunDirectoryError
 
     case = prepare(load_case("orthogonal"))
     first = RunDirectory(tmp_path, case)

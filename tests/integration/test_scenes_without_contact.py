@@ -59,7 +59,7 @@ def test_a_tuft_that_cannot_reach_resumes_as_it_solved(two_tufts, tmp_path):
     """A resumed group is held to the bound its solve checked: the short tuft's is its
     inertia allowance alone (a contact bound of 0 N; its handle pushed 1.7e-17 N at t = 0,
     which the contact bound alone refused on resuming)."""
-    from exubrush.run.rundir import RunDirectory
+    from exubrush.output.rundir import RunDirectory
 
     first = simulate(two_tufts, progress=False, workers=1,
                      directory=RunDirectory(tmp_path / "run", two_tufts))

@@ -19,8 +19,9 @@ from exubrush.world.clearance import (
     lowest_below,
     outermost,
 )
-from exubrush.world.motion import HeadMotion, RestingSlide
+from exubrush.world.motion import HeadMotion
 from exubrush.world.pose import AXES, HeadPose, SineTerm, rotation_matrix
+from exubrush.world.slide import RestingSlide
 
 SINE = """
 name = "posed"

@@ -14,7 +14,7 @@ import pytest
 from exubrush.parameters.fields import ParameterError
 from exubrush.parameters.io import load_case
 from exubrush.run.prepared import prepare
-from exubrush.world.motion import TabulatedSlide
+from exubrush.world.slide import TabulatedSlide
 
 SLIDE = "time [s],slider_position [mm]\n0,0\n1,5\n2,0\n"
 
@@ -106,7 +106,7 @@ def _csv_case(tmp_path, content: bytes | None, overrides=()):
     (b"time [s],slider_position [mm]\n0,0\n0.05,5\n0.1,0\n", "solver.step_size 2 ms does not "
      "resolve the motion: 100 steps over the slide CSV's duration need a step of at most "
      "1 ms"),
-    # beyond what a brush head can do (exubrush.world.motion.TABLE_REACH, TABLE_RATE): a
+    # beyond what a brush head can do (exubrush.world.slide.TABLE_REACH, TABLE_RATE): a
     # solver failure (exit 1) before, not a refusal of the input
     (b"time [s],slider_position [mm]\n0,0\n1,1e300\n2,0\n", "'slider_position' is 1e+300 mm "
      "from its first row at sample 2 (t = 1 s), beyond the 10000 mm a brush head can move"),
@@ -173,7 +173,7 @@ def test_a_stepped_slide_never_leaves_the_range_of_its_data():
 
 
 def test_a_changed_slide_csv_is_never_resumed_into(tmp_path):
-    from exubrush.run.rundir import RunDirectory, RunDirectoryError
+    from exubrush.output.rundir import RunDirectory, RunDirectoryError
 
     first = _csv_case(tmp_path, SLIDE.encode())
     RunDirectory(tmp_path / "run", first)

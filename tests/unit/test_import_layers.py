@@ -7,7 +7,10 @@ Exudyn and pint) are in pyproject.toml under [tool.importlinter].
 import pkgutil
 import subprocess
 import sys
+import tomllib
 from pathlib import Path
+
+import grimp
 
 import exubrush
 
@@ -27,6 +30,89 @@ def test_import_contracts_hold():
     script = ("import sys; from importlinter.cli import lint_imports; "
               "sys.exit(lint_imports(no_cache=True))")
     assert "0 broken" in fresh_python(script, cwd=ROOT)
+
+
+def import_edges(type_only: bool = True) -> dict[str, set[str]]:
+    """Each exubrush module and the exubrush modules it imports, function-local imports
+    counted and, if ``type_only``, those under ``if TYPE_CHECKING`` (the import-linter
+    contracts see the same graph)."""
+    graph = grimp.build_graph("exubrush", include_external_packages=False, cache_dir=None,
+                              exclude_type_checking_imports=not type_only)
+    return {module: set(graph.find_modules_directly_imported_by(module))
+            for module in graph.modules}
+
+
+def contracts() -> list[dict]:
+    """The import-linter contracts of pyproject.toml."""
+    with open(ROOT / "pyproject.toml", "rb") as file:
+        return tomllib.load(file)["tool"]["importlinter"]["contracts"]
+
+
+def package_edges(edges: dict[str, set[str]]) -> dict[str, set[str]]:
+    """The same imports between packages (``exubrush.run``) and top-level modules
+    (``exubrush.cli``); the package's own ``__init__`` (the lazy top-level API) left out."""
+    def package(module: str) -> str:
+        return ".".join(module.split(".")[:2])
+
+    found: dict[str, set[str]] = {}
+    for importer, imported in edges.items():
+        if importer == "exubrush":
+            continue
+        targets = {package(m) for m in imported} - {"exubrush", package(importer)}
+        found.setdefault(package(importer), set()).update(targets)
+    return found
+
+
+def circles(edges: dict[str, set[str]]) -> list[tuple[str, str]]:
+    """Every import ``(a, b)`` of ``edges`` from which ``a`` is reached again."""
+    def reached(start: str) -> set[str]:
+        seen: set[str] = set()
+        todo = [start]
+        while todo:
+            for nxt in edges.get(todo.pop(), ()):
+                if nxt not in seen:
+                    seen.add(nxt)
+                    todo.append(nxt)
+        return seen
+
+    return sorted((a, b) for a, targets in edges.items() for b in targets if a in reached(b))
+
+
+def test_circles_finds_a_circle_and_only_it():
+    edges = {"a": {"b"}, "b": {"c"}, "c": {"a", "d"}, "d": set()}
+    assert circles(edges) == [("a", "b"), ("b", "c"), ("c", "a")]
+    assert package_edges({"exubrush.x.m": {"exubrush.y.n", "exubrush.x.k"},
+                          "exubrush": {"exubrush.x.m"}}) == {"exubrush.x": {"exubrush.y"}}
+
+
+def test_no_circle_between_modules():
+    assert circles(import_edges()) == []
+
+
+def test_no_circle_between_packages():
+    assert circles(package_edges(import_edges())) == []
+
+
+def test_the_layers_are_one_row_per_package_with_type_only_imports_counted():
+    with open(ROOT / "pyproject.toml", "rb") as file:
+        assert not tomllib.load(file)["tool"]["importlinter"]["exclude_type_checking_imports"]
+    (layers,) = [c["layers"] for c in contracts() if c["type"] == "layers"]
+    named = [name.strip() for row in layers for name in row.split("|")]
+    packages = {".".join(m.split(".")[:2]) for m in import_edges()} - {"exubrush",
+                                                                      "exubrush.__main__"}
+    assert sorted(named) == sorted(packages)  # each package in one row, nothing finer
+
+
+def test_imports_the_pure_modules_contract_ignores_are_type_only():
+    """The forbidden contracts count type-only imports too; the few they ignore must load
+    nothing at run time."""
+    ignored = [line for c in contracts() for line in c.get("ignore_imports", [])]
+    every, at_run_time = import_edges(), import_edges(type_only=False)
+    assert ignored  # the contracts were read
+    for line in ignored:
+        importer, imported = (name.strip() for name in line.split("->"))
+        assert imported in every[importer], line
+        assert imported not in at_run_time[importer], f"{line} is imported at run time"
 
 
 def test_importing_every_module_keeps_the_matplotlib_backend():

@@ -5,7 +5,8 @@ import math
 import numpy as np
 import pytest
 
-from exubrush.world.motion import HeadMotion, SineSlide, TabulatedSlide, read_slide_csv, smooth_step
+from exubrush.world.motion import HeadMotion
+from exubrush.world.slide import SineSlide, TabulatedSlide, read_slide_csv, smooth_step
 
 
 def _finite_difference(f, t, h=1e-5):

@@ -15,8 +15,9 @@ from exubrush.run.budget import term_segments, term_steps, term_windows
 from exubrush.run.prepared import prepare
 from exubrush.run.step_policy import term_step_cap
 from exubrush.world.kinematics import handle_angles, handle_coordinates, handle_kinematics
-from exubrush.world.motion import HeadMotion, RestingSlide
-from exubrush.world.pose import SineTerm, with_pose
+from exubrush.world.motion import HeadMotion, with_pose
+from exubrush.world.pose import SineTerm
+from exubrush.world.slide import RestingSlide
 
 SONIC = {"axis": "y", "amplitude": "0.3 mm", "frequency": "260 Hz"}
 
@@ -147,7 +148,7 @@ def test_a_posed_run_stopped_before_its_first_sample_has_no_angles(tmp_path):
 
 
 def test_a_posed_run_interrupted_before_any_sample_saves_its_record_only(tmp_path):
-    from exubrush.run.assemble import RunFacts, assemble_results
+    from exubrush.output.assemble import RunFacts, assemble_results
 
     prepared = prepare(load_case(_case_file(tmp_path, (
         '[[motion.sine]]\naxis = "rz"\nangle = "5 deg"\nfrequency = "50 Hz"\n'))))

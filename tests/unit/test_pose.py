@@ -229,7 +229,7 @@ def test_a_pose_csv_converts_units(tmp_path):
      "column 'Y' is not 'y' (labels are case sensitive); write 'y [mm]'"),
     # a decimal comma: the row's cells after it would shift (x read as 1 mm, not 1.5)
     ("time [s],x [mm]\n0,0\n1,1,5\n", "line 3 has 3 cells for 2 columns (a decimal comma?"),
-    # a brush head moves within 10 m and at 100 m/s at most (motion.TABLE_REACH, TABLE_RATE)
+    # a brush head moves within 10 m and at 100 m/s at most (slide.TABLE_REACH, TABLE_RATE)
     ("time [s],x [mm]\n0,0\n1,1e300\n2,0\n",
      "'x' is 1e+300 mm from its first row at sample 2 (t = 1 s), beyond the 10000 mm"),
     ("time [s],z [mm]\n0,-1e308\n1,1e308\n", "'z' is inf mm from its first row at sample 2"),

@@ -8,8 +8,8 @@ from pathlib import Path
 
 import yaml
 
+from exubrush.output.rundir import recorded_status, run_record
 from exubrush.parameters.catalogue import orthogonal_case
-from exubrush.run.rundir import recorded_status, run_record
 from exubrush.util.references import (
     BRISTLE_CONTACT,
     FLORES,

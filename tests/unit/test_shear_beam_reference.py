@@ -1,10 +1,10 @@
-"""The geometrically exact beam reference (exubrush.reference.shear_beam) against closed forms."""
+"""The geometrically exact beam reference (exubrush.shear_beam) against closed forms."""
 
 import numpy as np
 import pytest
 
 from exubrush.reference.elastica import solve_cantilever
-from exubrush.reference.shear_beam import tip_position
+from exubrush.shear_beam import tip_position
 
 LENGTH, BENDING = 2.0, 0.1  # mm, N mm²
 

@@ -59,11 +59,11 @@ from exubrush.output.experiment import (
 )
 from exubrush.output.plotting import figure
 from exubrush.output.results import Results, read_results
+from exubrush.output.rundir import unusable_directory
 from exubrush.parameters.fields import ParameterError
 from exubrush.parameters.io import load_case
 from exubrush.presets import PRESETS
 from exubrush.run.prepared import prepare
-from exubrush.run.rundir import unusable_directory
 from exubrush.simulation import simulate
 
 FLAT_SPEED = 0.8
