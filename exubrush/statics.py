@@ -20,7 +20,9 @@ from exubrush.models.assembly import rigid_marker
 from exubrush.models.dfm import add_dfm_bristle
 from exubrush.models.geometry import BristleGeometry
 from exubrush.models.prb import add_prb_bristle
-from exubrush.parameters.case import BristleContactLaw, ContactLaw, Material, Solver, Surface
+from exubrush.parameters.case import BristleContactLaw, ContactLaw, Surface
+from exubrush.parameters.head import Material
+from exubrush.parameters.settings import Solver
 from exubrush.run.solver import dynamic_settings, static_settings
 from exubrush.world.mesh import frame_with_normal
 

@@ -26,7 +26,7 @@ from exubrush.models.assembly import (
 from exubrush.models.geometry import BristleGeometry
 from exubrush.models.inertia import dfm_root_piece
 from exubrush.models.stiffness import midpoint_stiffness
-from exubrush.parameters.case import Material
+from exubrush.parameters.head import Material
 
 
 def add_dfm_bristle(

@@ -21,7 +21,7 @@ from numpy.typing import ArrayLike
 
 from exubrush.models.packing import PackingError, filament_offsets
 from exubrush.models.sections import SectionProperties, section_properties
-from exubrush.parameters.case import BristleEntry, Head, Material
+from exubrush.parameters.head import BristleEntry, Head, Material
 from exubrush.util.pair_search import pairs_within
 
 # a root this close to the head's centre [mm] has no direction away from it (tilt_pattern

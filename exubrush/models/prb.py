@@ -45,7 +45,7 @@ from exubrush.models.buckling import axial_force, clamped_pinned_load
 from exubrush.models.geometry import BristleGeometry
 from exubrush.models.inertia import prb_root_piece
 from exubrush.models.stiffness import prb_torsional_stiffness
-from exubrush.parameters.case import Material
+from exubrush.parameters.head import Material
 
 # lateral stiffness of the pivot spring over the bristle's axial stiffness EA/l: on four
 # bristles of the default head (1.5 periods) the mean flat-zone force lay 0.02 % from the

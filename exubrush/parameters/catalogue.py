@@ -11,8 +11,9 @@ import math
 from dataclasses import replace
 from pathlib import Path
 
-from exubrush.parameters.case import Case, SineMotion, Surface, Tuft
+from exubrush.parameters.case import Case, SineMotion, Surface
 from exubrush.parameters.fields import build
+from exubrush.parameters.head import Tuft
 
 
 def orthogonal_case() -> Case:

@@ -1,6 +1,6 @@
 """Reading a head's tufts from a CSV table (``head.tuft_table``).
 
-One row per tuft, one column per :class:`~exubrush.parameters.case.Tuft` field, the unit of
+One row per tuft, one column per :class:`~exubrush.parameters.head.Tuft` field, the unit of
 every quantity in the header, e.g.::
 
     # name,x [mm],y [mm],diameter [mm],filaments,material
@@ -19,8 +19,8 @@ from __future__ import annotations
 import dataclasses
 from pathlib import Path
 
-from exubrush.parameters.case import Tuft
 from exubrush.parameters.fields import ParameterError, build
+from exubrush.parameters.head import Tuft
 from exubrush.util.tables import read_rows, split_header
 
 REQUIRED = ("x", "y")

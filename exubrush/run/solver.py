@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import exudyn as exu
 
-from exubrush.parameters.case import Solver
+from exubrush.parameters.settings import Solver
 
 
 def quiet(settings: exu.SimulationSettings) -> exu.SimulationSettings:

@@ -8,7 +8,8 @@ import pytest
 
 from exubrush.models.geometry import BristleGeometry
 from exubrush.models.sections import section_properties
-from exubrush.parameters.case import BUILT_IN_MATERIALS, BristleContactLaw
+from exubrush.parameters.case import BristleContactLaw
+from exubrush.parameters.head import BUILT_IN_MATERIALS
 from exubrush.statics import pushed_pair
 from exubrush.util.references import BRISTLE_CONTACT, FLORES, FRICTION, PAPER
 

@@ -12,7 +12,7 @@ import pytest
 
 from exubrush.models.geometry import BristleGeometry
 from exubrush.models.sections import section_properties
-from exubrush.parameters.case import Material
+from exubrush.parameters.head import Material
 from exubrush.reference.elastica import solve_cantilever
 from exubrush.statics import tip_loaded_cantilever
 

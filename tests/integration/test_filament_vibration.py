@@ -40,7 +40,8 @@ from exudyn.rigidBodyUtilities import InertiaCuboid
 from exubrush.models.dfm import add_dfm_bristle
 from exubrush.models.geometry import BristleGeometry
 from exubrush.models.sections import section_properties
-from exubrush.parameters.case import BUILT_IN_MATERIALS, Solver
+from exubrush.parameters.head import BUILT_IN_MATERIALS
+from exubrush.parameters.settings import Solver
 from exubrush.reference.cantilever_vibration import (
     first_bending_frequency,
     mode_shape,

@@ -28,7 +28,7 @@ from exubrush.models.inertia import dfm_root_piece, prb_root_piece, root_piece_i
 from exubrush.models.prb import add_prb_bristle
 from exubrush.models.sections import section_properties
 from exubrush.output.assemble import carried_root_pieces
-from exubrush.parameters.case import BUILT_IN_MATERIALS
+from exubrush.parameters.head import BUILT_IN_MATERIALS
 from exubrush.parameters.io import load_case
 from exubrush.reference.cantilever_vibration import (
     base_force_response,

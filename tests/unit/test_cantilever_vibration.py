@@ -8,7 +8,7 @@ from scipy.integrate import quad
 from scipy.optimize import brentq
 
 from exubrush.models.sections import section_properties
-from exubrush.parameters.case import BUILT_IN_MATERIALS
+from exubrush.parameters.head import BUILT_IN_MATERIALS
 from exubrush.reference.cantilever_vibration import (
     FIRST_ROOT,
     SECOND_ROOT,

@@ -6,8 +6,8 @@ from types import SimpleNamespace
 import exudyn as exu
 import pytest
 
-from exubrush.parameters.case import Solver
 from exubrush.parameters.io import load_case
+from exubrush.parameters.settings import Solver
 from exubrush.run.prepared import prepare
 from exubrush.run.solver import (
     dynamic_settings,

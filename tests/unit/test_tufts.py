@@ -7,9 +7,9 @@ import numpy as np
 import pytest
 
 from exubrush.models.geometry import head_bristles
-from exubrush.parameters.case import BUILT_IN_MATERIALS
 from exubrush.parameters.catalogue import tuft_case
 from exubrush.parameters.fields import ParameterError
+from exubrush.parameters.head import BUILT_IN_MATERIALS
 from exubrush.parameters.io import load_case
 from exubrush.run.prepared import prepare
 
