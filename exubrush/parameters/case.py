@@ -35,8 +35,8 @@ class BristleContactLaw(Parameters):
     normal of the touching surfaces with damping, and Coulomb friction regularised below a
     sliding speed (docs/tufts.md, "Contact between bristles")."""
 
-    # a numerical choice (docs/tufts.md): the deepest overlap in a 7-filament tuft over a
-    # period was 3.8 % of the diameter at 50 N/mm, 5.6 % at 25; 100 N/mm doubled the run time
+    # a numerical choice between the filaments' overlap and the run time (docs/tufts.md,
+    # docs/decisions/0011)
     stiffness: float = param(50.0, "penalty stiffness per contact", "N/mm", above=0.0)
     # about critical damping 2√(k m) of one DFM segment of a nylon filament (1e-4) or of a
     # silicone blade (3e-4)
@@ -191,10 +191,9 @@ class Model(Parameters):
 
     @property
     def node_rotation(self) -> str:
-        """The rotation coordinates the bodies get, ``rotation`` with "auto" resolved: a PRB
-        link on Euler parameters took 3.5-5.2 Newton iterations a step and 5.5 times the
-        Jacobians, on a rotation vector 2.6-3.8 (docs/decisions/0015); DFM chains are faster on
-        Euler parameters."""
+        """The rotation coordinates the bodies get, ``rotation`` with "auto" resolved: the
+        one on which the model's Newton iterations converge faster, a rotation vector for a
+        PRB link, Euler parameters for DFM chains (docs/decisions/0015)."""
         if self.rotation != "auto":
             return self.rotation
         return "rotation-vector" if self.kind == "prb" else "euler-parameters"

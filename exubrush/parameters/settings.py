@@ -64,9 +64,9 @@ class Solver(Parameters):
               "(contact.between_bristles)", above=0.0, below=1.0,
     )
     absolute_tolerance: float = param(1e-10, "Newton absolute tolerance (residual)", above=0.0)
-    # below 1e-2: at 2.5e-3 the flat-zone forces already moved by 0.3 %, and a tolerance
-    # near the buckling load itself accepts any first guess (a run "completes" with wrong
-    # forces)
+    # below 1e-2: larger ones move the flat-zone forces, and a tolerance near the buckling
+    # load itself accepts any first guess, so that a run "completes" with wrong forces
+    # (docs/model.md, "Newton's tolerance"; docs/decisions/0013)
     force_tolerance: float = param(
         5e-4, "Newton also accepts a step whose residual is below this fraction of the Euler "
               "buckling load of the weakest bristle solved with it (0: off; "
