@@ -57,3 +57,16 @@ def test_width_above_interpolates_the_crossings(script):
 def test_a_run_without_a_later_reversal_is_refused(script, sine_run):
     with pytest.raises(ValueError, match="reversal after the first"):
         script.band_metrics(sine_run(t_end=6.0, dt=0.01))
+
+
+def test_a_head_that_does_not_touch_is_refused(script, sine_run):
+    run = sine_run(scale=0.0)
+    with pytest.raises(ValueError, match="does not touch"):
+        script.band_metrics(run)
+
+
+def test_a_reversal_without_a_peak_has_no_duration(script, sine_run):
+    run = sine_run(dt=0.01)
+    metrics = script.band_metrics(dataclasses.replace(run, normal_force=np.ones_like(run.time)))
+    assert metrics["ratio"] == pytest.approx(1.0, rel=1e-12)  # flat everywhere: peak = mean
+    assert math.isnan(metrics["duration"])

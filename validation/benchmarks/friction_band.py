@@ -7,10 +7,13 @@ and prints, per run, the numbers that move with it (docs/model.md, 'The friction
 sensitivity', holds the table and the commands that made it)::
 
     for v in "1.2 1.5" "0.12 0.15" "0.012 0.015"; do set -- $v
-      exubrush run orthogonal --workers 1 --out band/orthogonal-vs$1 \\
-        --set "contact.static_velocity='$1 mm/s'" --set "contact.dynamic_velocity='$2 mm/s'"
-    done   # and the same with parallel
-    python validation/benchmarks/friction_band.py band/*-vs*
+      for slide in orthogonal parallel; do
+        exubrush run $slide --workers 1 --out band/$slide-vs$1 \\
+          --set "contact.static_velocity='$1 mm/s'" --set "contact.dynamic_velocity='$2 mm/s'"
+      done
+    done
+    python validation/benchmarks/friction_band.py band/orthogonal-vs1.2 band/orthogonal-vs0.12 \\
+      band/orthogonal-vs0.012 band/parallel-vs1.2 band/parallel-vs0.12 band/parallel-vs0.012
 
 Per run (mN, s; :func:`band_metrics`):
 
@@ -72,12 +75,14 @@ def band_metrics(series: ForceSeries, flat_speed_fraction: float = FLAT_SPEED) -
         whole strokes' flat-zone means in that direction); ``flat_normal``: the mean over
         all whole strokes; ``peaks``: the largest F_n in each reversal zone, in order;
         ``ratio``: R, the largest later peak over ``flat_normal``; ``duration``: that
-        peak's width at half its excess [s].
+        peak's width at half its excess [s], NaN if it does not rise above the flat mean
+        (no peak: printed as "–").
 
     Raises
     ------
     ValueError
-        If the run has no whole stroke or no reversal after the first (too short).
+        If the run has no whole stroke or no reversal after the first (too short), or no
+        normal force in the flat zones (the head does not touch).
     """
     rows = stroke_flat_means(series, flat_speed_fraction)
     zones = reversal_zones(series.time, series.slide_velocity, flat_speed_fraction)
@@ -90,6 +95,9 @@ def band_metrics(series: ForceSeries, flat_speed_fraction: float = FLAT_SPEED) -
         flat[direction] = {key: float(np.mean([row[key] for row in mine]))
                            for key in ("normal_force", "tangential_force")}
     flat_normal = float(np.mean([row["normal_force"] for row in rows]))
+    if flat_normal <= 0.0:
+        raise ValueError("no normal force in the flat zones: the head does not touch, R is "
+                         "undefined")
     peak_indices = []
     for start, end in zones:
         zone = np.flatnonzero((series.time >= start) & (series.time <= end))
@@ -97,10 +105,10 @@ def band_metrics(series: ForceSeries, flat_speed_fraction: float = FLAT_SPEED) -
     peaks = [float(series.normal_force[i]) for i in peak_indices]
     later = 1 + int(np.argmax(peaks[1:]))
     level = flat_normal + 0.5 * (peaks[later] - flat_normal)
+    duration = (width_above(series.time, series.normal_force, peak_indices[later], level)
+                if peaks[later] > flat_normal else float("nan"))
     return {"flat": flat, "flat_normal": flat_normal, "peaks": peaks,
-            "ratio": peaks[later] / flat_normal,
-            "duration": width_above(series.time, series.normal_force, peak_indices[later],
-                                    level)}
+            "ratio": peaks[later] / flat_normal, "duration": duration}
 
 
 def table_row(directory: str) -> str:
@@ -114,9 +122,10 @@ def table_row(directory: str) -> str:
         return " / ".join(f"{1e3 * flat[d][key]:.2f}" if d in flat else "–" for d in (1, -1))
 
     peaks = " / ".join(f"{1e3 * p:.1f}" for p in metrics["peaks"])
+    duration = "–" if np.isnan(metrics["duration"]) else f"{metrics['duration']:.2f}"
     return (f"| {case.motion.direction} | {case.contact.static_velocity:g} | "
             f"{both('normal_force')} | {both('tangential_force')} | {peaks} | "
-            f"{metrics['ratio']:.2f} | {metrics['duration']:.2f} | "
+            f"{metrics['ratio']:.2f} | {duration} | "
             f"{results.metadata['wall_time_s']:.1f} |")
 
 
