@@ -258,7 +258,7 @@ def imperfection_record(prepared: PreparedCase) -> dict:
     drawn = imperfections(head, [b.tuft for b in prepared.bristles])
 
     def rounded(values) -> list:
-        return np.round(np.asarray(values, dtype=float), 6).tolist()
+        return (np.round(np.asarray(values, dtype=float), 6) + 0.0).tolist()  # no -0.0
 
     return {
         "distribution": "uniform within +- the spread (head.tilt_spread_x, tilt_spread_y, "

@@ -234,7 +234,8 @@ class Head(Parameters):
 
     def check(self) -> None:
         """A list layout needs entries, each at its own root; a tuft layout needs tufts
-        that name known materials and do not overlap."""
+        that name known materials and do not overlap; a root jitter must keep the roots
+        apart (grid and list layouts only)."""
         if self.layout == "list" and not self.bristles:
             raise ValueError("layout 'list' needs at least one [[head.bristles]] entry")
         roots: dict[tuple[float, float], int] = {}
@@ -249,11 +250,12 @@ class Head(Parameters):
                 raise ValueError("root_jitter is for grid and list layouts: a tuft's "
                                  "filaments are packed touching (packing = 'random' draws "
                                  "their roots); set head.root_jitter = 0")
-        elif self.root_jitter > 0.0:
-            self._check_jitter()
-        if self.tuft_table and self.layout != "tufts":
+            return
+        if self.tuft_table:
             raise ValueError(f"tuft_table is read for layout 'tufts' only (layout is "
                              f"'{self.layout}'): set head.layout = 'tufts'")
+        if self.root_jitter > 0.0:
+            self._check_jitter()
 
     def _check_jitter(self) -> None:
         """Jittered roots stay apart: each root moves at most √2 root_jitter (its x and y
@@ -274,10 +276,13 @@ class Head(Parameters):
         gap, which = min(pairs)
         largest = max(gap, 0.0) / (2.0 * math.sqrt(2.0))
         if self.root_jitter > largest:
+            # shown rounded down to 4 significant digits: a value as shown is allowed
+            scale = 10.0 ** (3 - math.floor(math.log10(largest))) if largest else 1.0
+            shown = math.floor(largest * scale) / scale
             raise ValueError(
                 f"root_jitter {self.root_jitter:g} mm could push {which} into each other "
                 f"(their sections' circles {gap:.4g} mm apart close by up to 2√2 x "
-                f"root_jitter): keep it at most {largest:.4g} mm")
+                f"root_jitter): keep it at most {shown:.4g} mm")
 
     def _list_root_gaps(self) -> list[tuple[float, str]]:
         """(gap between the circles around the two sections [mm], the pair's names) of

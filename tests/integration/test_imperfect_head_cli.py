@@ -14,14 +14,14 @@ import pytest
     (["head.misalign_x='10 deg'"], "head.misalign_x: 10 deg must be < 10 deg", "orthogonal"),
     (["head.misalign_y='-11 deg'"], "head.misalign_y: -11 deg must be >= -10 deg", "orthogonal"),
     # the default grid: 1.8 mm pitch less the 1.082 mm diagonal of a 0.6 x 0.9 mm blade,
-    # closed by up to 2√2 x the jitter: at most 0.254 mm
-    (["head.root_jitter='0.26 mm'"], "head: root_jitter 0.26 mm could push neighbouring "
+    # closed by up to 2√2 x the jitter: at most 0.25396 mm, shown rounded down
+    (["head.root_jitter='0.254 mm'"], "head: root_jitter 0.254 mm could push neighbouring "
      "roots of the grid into each other (their sections' circles 0.7183 mm apart close by "
-     "up to 2√2 x root_jitter): keep it at most 0.254 mm", "orthogonal"),
-    # list.toml's entries 1.2 mm apart: 1.2 - 1.082 = 0.1183 mm, / 2√2 = 0.04184 mm
+     "up to 2√2 x root_jitter): keep it at most 0.2539 mm", "orthogonal"),
+    # list.toml's entries 1.2 mm apart: 1.2 - 1.082 = 0.1183 mm, / 2√2 = 0.041838 mm
     (["head.root_jitter='0.05 mm'"], "head: root_jitter 0.05 mm could push the roots of "
      "bristles[0] and bristles[1] into each other (their sections' circles 0.1183 mm apart "
-     "close by up to 2√2 x root_jitter): keep it at most 0.04184 mm", "list.toml"),
+     "close by up to 2√2 x root_jitter): keep it at most 0.04183 mm", "list.toml"),
     (["head.root_jitter='0.01 mm'"], "head: root_jitter is for grid and list layouts",
      "tuft"),
     # the root at x = 9.9 mm sinks 9.9 sin 9.9° = 1.702 mm, 0.702 mm below the plane at 1 mm
