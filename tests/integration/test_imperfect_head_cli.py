@@ -42,3 +42,22 @@ def test_an_imperfection_out_of_range_is_refused_in_one_line(tmp_path, cli_here,
     assert message in done.stderr, done.stderr
     assert len(done.stderr.strip().splitlines()) == 1, done.stderr
     assert not (tmp_path / "run").exists()
+
+
+@pytest.mark.slow  # two real runs of one bristle
+def test_run_json_holds_the_drawn_values_of_an_imperfect_head_only(tmp_path, cli_here):
+    import json
+
+    tiny = ["run", "orthogonal", "--quiet", "--segments", "2", "--periods", "0.02", "--set",
+            "head.rows=1", "--set", "head.columns=2"]
+    assert cli_here(*tiny, "--out", "ideal", cwd=tmp_path).returncode == 0
+    done = cli_here(*tiny, "--set", "head.length_spread='4 %'", "--out", "imperfect",
+                    cwd=tmp_path)
+    assert done.returncode == 0, done.stderr
+    ideal = json.loads((tmp_path / "ideal" / "run.json").read_text())["derived"]
+    record = json.loads((tmp_path / "imperfect" / "run.json").read_text())["derived"][
+        "imperfections"]
+    assert "imperfections" not in ideal
+    assert len(record["length_mm"]) == 2
+    assert all(4.8 <= length <= 5.2 for length in record["length_mm"])  # 5 mm ± 4 %
+    assert record["length_mm"][0] != record["length_mm"][1]

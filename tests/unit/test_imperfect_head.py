@@ -152,3 +152,20 @@ def test_run_json_records_the_drawn_values():
     assert np.asarray(record["root_offset_mm"]) == pytest.approx(drawn.offset, abs=5e-7)
     assert record["misalignment_deg"] == [0.5, 0.0]
     assert record["seed"] == 1
+
+
+def test_each_root_is_as_far_from_the_plane_as_its_own_height_allows():
+    # without pose terms the head only descends to d: a root at height z stands d + z above
+    # the plane; with them, at most the roots' closest approach (any root may be turned
+    # lowest), here 3 mm
+    from types import SimpleNamespace
+
+    from exubrush.world.clearance import root_distances
+
+    case = load_case("orthogonal")
+    d = case.motion.interaction_distance
+    roots = np.array([[0.0, 0.0, 0.0], [9.9, 0.0, -0.3], [-9.9, 0.0, 0.3]])
+    still = root_distances(case, roots, SimpleNamespace(pose=None), closest=d)
+    assert still.tolist() == [d, d - 0.3, d + 0.3]
+    posed = root_distances(case, roots, SimpleNamespace(pose=object()), closest=3.0)
+    assert posed.tolist() == [3.0, 3.0, 3.0]
