@@ -10,6 +10,16 @@ that filaments packed side by side start parallel instead of leaning into each o
 ``Head.tilt_pattern = "radial"`` tilts every root away from the head's centre instead: a
 round head then stays symmetric under its turns, and filaments the same distance from
 the centre are twins under them (exubrush.run.twins).
+
+Imperfections of a real head (docs/model.md, "Imperfections of a real head"; all zero by
+default, the ideal head): each bristle's tilts about x and y, free length and root x, y
+deviate by a uniform draw within ``head.tilt_spread_x``, ``tilt_spread_y``,
+``length_spread`` (a fraction of the length) and ``root_jitter``, and the whole head is
+turned by ``head.misalign_x`` then ``misalign_y`` about its centre on the roots' surface.
+Each quantity has its own stream of unit draws u in [-1, 1) from ``head.seed`` (apart from
+the root tilts' and the packings' streams), scaled by its half-width: switching one on
+leaves the others' draws and the root-tilt directions as they were, and the same seed at
+twice the spread gives twice the deviations.
 """
 
 from __future__ import annotations
@@ -21,7 +31,7 @@ from numpy.typing import ArrayLike
 
 from exubrush.models.packing import PackingError, filament_offsets
 from exubrush.models.sections import SectionProperties, section_properties
-from exubrush.parameters.head import BristleEntry, Head, Material
+from exubrush.parameters.head import BristleEntry, Head, Material, section_diameter
 from exubrush.util.pair_search import pairs_within
 
 # a root this close to the head's centre [mm] has no direction away from it (tilt_pattern
@@ -46,7 +56,8 @@ class BristleGeometry:
     Attributes
     ----------
     root : ndarray (3,)
-        Root position in the head frame, on the roots' surface Z = 0 of the handle [mm].
+        Root position in the head frame, on the roots' surface Z = 0 of the handle [mm]
+        (off it by the misalignment of an imperfect head).
     frame : ndarray (3, 3)
         Columns: the bristle's x (root to tip), y and z axes in the head frame.
     length, tip_radius : float
@@ -82,14 +93,66 @@ class BristleGeometry:
     @property
     def outer_radius(self) -> float:
         """Radius of the smallest cylinder around the bristle's section and tip sphere [mm]."""
-        section = (np.hypot(self.width, self.height) if self.shape == "rectangle"
-                   else max(self.width, self.height))
-        return max(0.5 * float(section), self.tip_radius)
+        return max(0.5 * section_diameter(self.shape, self.width, self.height),
+                   self.tip_radius)
 
     @property
     def lowest_reach(self) -> float:
         """Z of the tip sphere's lowest point relative to the roots' surface, upright [mm]."""
         return float(self.point(self.length)[2] - self.tip_radius)
+
+
+@dataclass(frozen=True)
+class Imperfections:
+    """The deviations drawn for an imperfect head (module docstring), per bristle.
+
+    Attributes
+    ----------
+    tilt_x, tilt_y : ndarray (n,)
+        Added to the bristle's tilt about the head's x and y axes [rad] (a tuft's
+        filaments share their tuft's).
+    length_factor : ndarray (n,)
+        The free length's factor 1 + length_spread u [-].
+    offset : ndarray (n, 2)
+        Added to the root's x and y [mm].
+    """
+
+    tilt_x: np.ndarray
+    tilt_y: np.ndarray
+    length_factor: np.ndarray
+    offset: np.ndarray
+
+
+def imperfections(head: Head, tufts: list[int | None]) -> Imperfections:
+    """The deviations of a head whose bristles belong to ``tufts`` (each bristle's tuft
+    index, None outside a tuft layout): zeros, and factors of exactly 1, for zero spreads."""
+    count = len(tufts)
+
+    def unit_draws(stream: int, size: int) -> np.ndarray:
+        return np.random.default_rng([head.seed, 2, stream]).uniform(-1.0, 1.0, size)
+
+    if head.layout == "tufts":  # a tuft tilts as one: its filaments start parallel
+        index = np.array(tufts, dtype=int)
+        tilt_x = unit_draws(0, len(head.tufts))[index]
+        tilt_y = unit_draws(1, len(head.tufts))[index]
+    else:
+        tilt_x, tilt_y = unit_draws(0, count), unit_draws(1, count)
+    return Imperfections(
+        tilt_x=head.tilt_spread_x * tilt_x,
+        tilt_y=head.tilt_spread_y * tilt_y,
+        length_factor=1.0 + head.length_spread * unit_draws(2, count),
+        offset=head.root_jitter * np.column_stack([unit_draws(3, count),
+                                                   unit_draws(4, count)]),
+    )
+
+
+def misalignment(head: Head) -> np.ndarray | None:
+    """The whole head's turn (3, 3): about x by ``misalign_x``, then about y by
+    ``misalign_y``, in the head frame; None for an aligned head."""
+    if head.misalign_x == 0.0 and head.misalign_y == 0.0:
+        return None
+    return (rotation_about([1.0, 0.0, 0.0], head.misalign_x)
+            @ rotation_about([0.0, 1.0, 0.0], head.misalign_y))
 
 
 def can_reach(bristle: BristleGeometry, interaction_distance: float) -> bool:
@@ -182,7 +245,10 @@ def head_bristles(head: Head) -> list[BristleGeometry]:
     rng = np.random.default_rng(head.seed)
     bristles = []
     tuft_directions: dict[int, float] = {}
-    for entry, material, tuft in _entries(head):
+    entries = _entries(head)
+    drawn = imperfections(head, [tuft for _, _, tuft in entries])
+    turn = misalignment(head)
+    for k, (entry, material, tuft) in enumerate(entries):
         upright = UPRIGHT_FRAME
         # the filaments of a tuft share one direction: they start parallel, as they touch
         direction = (rng.uniform(0.0, 2.0 * np.pi) if tuft is None
@@ -195,18 +261,21 @@ def head_bristles(head: Head) -> list[BristleGeometry]:
             direction = polar - 0.5 * np.pi
             upright = rotation_about([0.0, 0.0, 1.0], polar) @ UPRIGHT_FRAME
         frame = (
-            rotation_about([1.0, 0.0, 0.0], entry.tilt_x)
-            @ rotation_about([0.0, 1.0, 0.0], entry.tilt_y)
+            rotation_about([1.0, 0.0, 0.0], entry.tilt_x + drawn.tilt_x[k])
+            @ rotation_about([0.0, 1.0, 0.0], entry.tilt_y + drawn.tilt_y[k])
             @ upright
         )
         if head.root_tilt > 0.0:
             tilt_axis = np.array([np.cos(direction), np.sin(direction), 0.0])
             frame = rotation_about(tilt_axis, head.root_tilt) @ frame
+        root = np.array([entry.x + drawn.offset[k, 0], entry.y + drawn.offset[k, 1], 0.0])
+        if turn is not None:
+            root, frame = turn @ root, turn @ frame
         bristles.append(
             BristleGeometry(
-                root=np.array([entry.x, entry.y, 0.0]),
+                root=root,
                 frame=frame,
-                length=entry.length,
+                length=entry.length * float(drawn.length_factor[k]),
                 tip_radius=entry.tip_radius,
                 section=section_properties(entry.section, entry.width, entry.height),
                 width=entry.width,

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from exubrush.models.geometry import imperfections
 from exubrush.models.inertia import dfm_root_piece, prb_root_piece, root_piece_inertia
 from exubrush.output.results import HeadWrench, Results
 from exubrush.parameters.fields import to_plain
@@ -238,12 +239,38 @@ def _derived(prepared: PreparedCase, ran: list[GroupSolution], solved: list[Grou
         derived["bristle_contacts_mean"] = sum(s.bristle_contacts_mean for s in solved)
         derived["bristle_overlap_max_mm"] = max((s.bristle_overlap_max for s in solved),
                                                 default=0.0)
+    if case.head.imperfect:
+        derived["imperfections"] = imperfection_record(prepared)
     if prepared.prb is not None:
         derived["prb_gamma"] = prepared.prb.gamma
         derived["prb_stiffness_coefficient"] = prepared.prb.stiffness_coefficient
         if prepared.prb.load_ratio is not None:
             derived["prb_load_ratio"] = prepared.prb.load_ratio
     return derived
+
+
+def imperfection_record(prepared: PreparedCase) -> dict:
+    """An imperfect head's drawn values, per bristle in the head's order (rounded to 1e-6
+    of their unit; head.seed draws them again exactly): the tilts added about the head's x
+    and y axes [deg], the free lengths [mm], the roots' offsets [mm] and the roots after
+    the misalignment [mm, head frame]."""
+    head = prepared.case.head
+    drawn = imperfections(head, [b.tuft for b in prepared.bristles])
+
+    def rounded(values) -> list:
+        return (np.round(np.asarray(values, dtype=float), 6) + 0.0).tolist()  # no -0.0
+
+    return {
+        "distribution": "uniform within +- the spread (head.tilt_spread_x, tilt_spread_y, "
+                        "length_spread, root_jitter)",
+        "seed": head.seed,
+        "tilt_x_deg": rounded(np.degrees(drawn.tilt_x)),
+        "tilt_y_deg": rounded(np.degrees(drawn.tilt_y)),
+        "length_mm": rounded([b.length for b in prepared.bristles]),
+        "root_offset_mm": rounded(drawn.offset),
+        "misalignment_deg": rounded(np.degrees([head.misalign_x, head.misalign_y])),
+        "root_mm": rounded([b.root for b in prepared.bristles]),
+    }
 
 
 def _statistics(solved: list[GroupSolution]) -> dict[str, int]:

@@ -87,6 +87,17 @@ BUILT_IN_MATERIALS = {
     "pbt": Material(youngs_modulus=2500.0, poisson_ratio=0.40, density=1.31e-9),
 }
 TUFT_PACKINGS = ("hexagonal", "random")
+# the imperfections' ranges (docs/model.md, "Imperfections of a real head"): a tilt spread or
+# misalignment beyond this is no small error but another head; a length spread of half
+# the length or more would trim some bristles to stubs
+IMPERFECT_TILT_LIMIT = math.radians(10.0)
+LENGTH_SPREAD_LIMIT = 0.5
+
+
+def section_diameter(section: str, width: float, height: float) -> float:
+    """Diameter of the circle around a section [mm]: a rectangle's diagonal, a circle's
+    diameter (the larger extent)."""
+    return math.hypot(width, height) if section == "rectangle" else max(width, height)
 
 
 @dataclass(frozen=True)
@@ -128,8 +139,7 @@ class Tuft(Parameters):
     @property
     def filament_diameter(self) -> float:
         """Diameter of the circle around a filament's section [mm] (the packing pitch)."""
-        return math.hypot(self.width, self.height) if self.section == "rectangle" else max(
-            self.width, self.height)
+        return section_diameter(self.section, self.width, self.height)
 
 
 @dataclass(frozen=True)
@@ -159,8 +169,33 @@ class Head(Parameters):
                   "root at the centre: a seeded random direction), so that a head "
                   "symmetric under turns about its centre stays so",
         "text", choices=("random", "radial"))
-    seed: int = param(1, "seed of the root-tilt directions and of random tuft packings",
-                      minimum=0)
+    seed: int = param(1, "seed of the root-tilt directions, of random tuft packings and of "
+                         "the imperfect head's draws", minimum=0)
+    tilt_spread_x: float = param(
+        0.0, "imperfect head: half-width of the uniform spread of each root's tilt about the "
+             "head's long axis x (tips scatter across the head: in the slide's plane for "
+             "orthogonal brushing, out of it for parallel), drawn per bristle (per tuft) "
+             "from head.seed", "rad", "deg", minimum=0.0, below=IMPERFECT_TILT_LIMIT)
+    tilt_spread_y: float = param(
+        0.0, "imperfect head: half-width of the uniform spread of each root's tilt about the "
+             "across axis y (tips scatter along the head: in the slide's plane for parallel "
+             "brushing, out of it for orthogonal), drawn per bristle (per tuft)", "rad",
+        "deg", minimum=0.0, below=IMPERFECT_TILT_LIMIT)
+    length_spread: float = param(
+        0.0, "imperfect head: half-width of the uniform spread of each free length, a "
+             "fraction of it (0.03 or \"3 %\": lengths within ±3 %), drawn per bristle",
+        minimum=0.0, below=LENGTH_SPREAD_LIMIT)
+    root_jitter: float = param(
+        0.0, "imperfect head: half-width of the uniform spread of each root's x and y, "
+             "drawn per bristle (grid and list layouts)", "mm", minimum=0.0)
+    misalign_x: float = param(
+        0.0, "imperfect head: tilt of the whole head about its long axis x through its "
+             "centre on the roots' surface (roots and bristles turned)", "rad", "deg",
+        minimum=-IMPERFECT_TILT_LIMIT, below=IMPERFECT_TILT_LIMIT)
+    misalign_y: float = param(
+        0.0, "imperfect head: tilt of the whole head about its across axis y through its "
+             "centre, after misalign_x", "rad", "deg", minimum=-IMPERFECT_TILT_LIMIT,
+        below=IMPERFECT_TILT_LIMIT)
     tuft_table: str = param("", "tufts: CSV table of the tufts, one row per tuft, units in "
                                 "the header (relative to the case file)", "text")
     material: Material = field(default_factory=Material)
@@ -177,6 +212,13 @@ class Head(Parameters):
             return sum(tuft.filaments for tuft in self.tufts)
         return len(self.bristles) if self.layout == "list" else self.rows * self.columns
 
+    @property
+    def imperfect(self) -> bool:
+        """Whether any imperfection of a real head is switched on (tilt, length or root
+        spreads, misalignment); all zero is the ideal head."""
+        return any((self.tilt_spread_x, self.tilt_spread_y, self.length_spread,
+                    self.root_jitter, self.misalign_x, self.misalign_y))
+
     def tuft_names(self) -> list[str]:
         """Each tuft as messages name it: ``tuft 'NAME'`` with its own name, or ``tufts[i]``
         (a tuft table's rows are named after their file and line)."""
@@ -192,7 +234,8 @@ class Head(Parameters):
 
     def check(self) -> None:
         """A list layout needs entries, each at its own root; a tuft layout needs tufts
-        that name known materials and do not overlap."""
+        that name known materials and do not overlap; a root jitter must keep the roots
+        apart (grid and list layouts only)."""
         if self.layout == "list" and not self.bristles:
             raise ValueError("layout 'list' needs at least one [[head.bristles]] entry")
         roots: dict[tuple[float, float], int] = {}
@@ -203,9 +246,58 @@ class Head(Parameters):
                                  f"bristles[{first}]: give each bristle its own position")
         if self.layout == "tufts":
             self._check_tufts()
-        elif self.tuft_table:
+            if self.root_jitter > 0.0:
+                raise ValueError("root_jitter is for grid and list layouts: a tuft's "
+                                 "filaments are packed touching (packing = 'random' draws "
+                                 "their roots); set head.root_jitter = 0")
+            return
+        if self.tuft_table:
             raise ValueError(f"tuft_table is read for layout 'tufts' only (layout is "
                              f"'{self.layout}'): set head.layout = 'tufts'")
+        if self.root_jitter > 0.0:
+            self._check_jitter()
+
+    def _check_jitter(self) -> None:
+        """Jittered roots stay apart: each root moves at most √2 root_jitter (its x and y
+        each by up to root_jitter), so a pair of roots a distance D apart comes at most
+        2√2 root_jitter closer; the circles around their sections (section_diameter) must
+        still not overlap (a bound for any seed, so a sweep over seeds is refused or run
+        whole)."""
+        if self.layout == "grid":
+            pitches = ([self.pitch_along] if self.columns > 1 else []) + (
+                [self.pitch_across] if self.rows > 1 else [])
+            shape = self.bristle
+            pairs = [(pitch - section_diameter(shape.section, shape.width, shape.height),
+                      "neighbouring roots of the grid") for pitch in pitches]
+        else:
+            pairs = self._list_root_gaps()
+        if not pairs:
+            return
+        gap, which = min(pairs)
+        largest = max(gap, 0.0) / (2.0 * math.sqrt(2.0))
+        if self.root_jitter > largest:
+            # shown rounded down to 4 significant digits: a value as shown is allowed
+            scale = 10.0 ** (3 - math.floor(math.log10(largest))) if largest else 1.0
+            shown = math.floor(largest * scale) / scale
+            raise ValueError(
+                f"root_jitter {self.root_jitter:g} mm could push {which} into each other "
+                f"(their sections' circles {gap:.4g} mm apart close by up to 2√2 x "
+                f"root_jitter): keep it at most {shown:.4g} mm")
+
+    def _list_root_gaps(self) -> list[tuple[float, str]]:
+        """(gap between the circles around the two sections [mm], the pair's names) of
+        each pair of list entries near enough to matter."""
+        from exubrush.util.pair_search import pairs_within
+
+        roots = [(entry.x, entry.y) for entry in self.bristles]
+        sizes = [section_diameter(e.section, e.width, e.height) for e in self.bristles]
+        reach = max(sizes) + 2.0 * math.sqrt(2.0) * self.root_jitter
+        gaps = []
+        for i, j in pairs_within(roots, reach).tolist():
+            gap = math.dist(roots[i], roots[j]) - 0.5 * (sizes[i] + sizes[j])
+            gaps.append((gap, f"the roots of bristles[{min(i, j)}] and "
+                              f"bristles[{max(i, j)}]"))
+        return gaps
 
     def _check_tufts(self) -> None:
         if self.tuft_table and self.tufts:

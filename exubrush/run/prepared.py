@@ -44,6 +44,8 @@ from exubrush.world.clearance import (
     largest_tilt,
     lowest_root,
     outermost,
+    root_distances,
+    sunken_roots,
 )
 from exubrush.world.kinematics import SLIDE_AXES
 from exubrush.world.mesh import MeshError, MeshSurface, read_mesh
@@ -218,7 +220,9 @@ def prepare(case: Case) -> PreparedCase:
     closest = closest_approach(motion, case.motion.direction, height, outermost(roots),
                                case.motion.interaction_distance
                                ) if case.surface.kind == PLANE else None
-    reaching = surface_reach(case, bristles, motion, mesh, closest=closest)
+    distances = root_distances(case, roots, motion, closest)
+    _refuse(sunken_roots(case, distances))
+    reaching = surface_reach(case, bristles, motion, mesh, distances=distances)
     groups = bristle_groups(case, bristles)
     sources, turns = stand_ins(case, bristles, groups, motion)
     if not any(reaching) and not case.motion.posed:
@@ -236,7 +240,7 @@ def prepare(case: Case) -> PreparedCase:
         start_height=height,
         prb=prb_parameters(case) if case.model.kind == "prb" else None,
         friction_window=friction_window(case, motion),
-        force_limits=static_force_limits(case, bristles, closest),
+        force_limits=static_force_limits(case, bristles, distances),
         groups=groups,
         work=work,
         inputs=input_digests(motion, mesh),
@@ -309,29 +313,31 @@ def input_digests(motion: HeadMotion, mesh: MeshSurface | None = None
 
 
 def surface_reach(case: Case, bristles, motion: HeadMotion, mesh: MeshSurface | None = None,
-                  samples: int = 400, closest: float | None = None) -> tuple[bool, ...]:
+                  samples: int = 400, distances: np.ndarray | None = None
+                  ) -> tuple[bool, ...]:
     """Per bristle, whether its tip can touch the surface somewhere along the slide.
 
-    A tip's lowest point reaches at most l + r below its root, which stands
-    ``motion.interaction_distance`` above the surface's top, and at most l + r to the side
-    of it; it can touch if the surface's top (exubrush.world.surfaces.highest_near) rises above
-    that depth anywhere within that distance of the root, at any of ``samples`` slide
-    positions (on a mesh: anywhere near the root's straight path, an upper bound). On the
-    plane this is d < l + r, with d the roots' ``closest`` approach to it where pose terms
-    bring them lower than the interaction distance (exubrush.world.clearance.
-    closest_approach). On other surfaces a head with pose terms reaches everywhere (not
-    sampled yet).
+    A tip's lowest point reaches at most l + r below its root, which stands its distance
+    (``distances``, :func:`root_distances`; default: ``motion.interaction_distance``) above
+    the level of the surface's top, and at most l + r to the side of it; it can touch if
+    the surface's top (exubrush.world.surfaces.highest_near) rises above that depth anywhere
+    within that distance of the root, at any of ``samples`` slide positions (on a mesh:
+    anywhere near the root's straight path, an upper bound). On the plane this is
+    d < l + r, with d the root's distance, lower than the interaction distance where pose
+    terms bring the roots lower. On other surfaces a head with pose terms reaches
+    everywhere (not sampled yet).
     """
-    distance = case.motion.interaction_distance if closest is None else closest
+    if distances is None:
+        distances = np.full(len(bristles), case.motion.interaction_distance)
     if case.surface.kind == PLANE:
-        return tuple(can_reach(b, distance) for b in bristles)
+        return tuple(can_reach(b, d) for b, d in zip(bristles, distances, strict=True))
     if motion.pose is not None:  # turned or shaken: every bristle may reach (an upper bound)
         return (True,) * len(bristles)
     times = np.linspace(0.0, motion.end_time, samples)
     axis = SLIDE_AXES[case.motion.direction]
     shift = np.outer([motion.sliding(t)[0] for t in times], axis)
     reaching = []
-    for bristle in bristles:
+    for bristle, distance in zip(bristles, distances, strict=True):
         reach = bristle.length + bristle.tip_radius
         centres = bristle.root[:2] + shift[:, :2]
         if mesh is None:

@@ -35,13 +35,16 @@ BEYOND_BOUND = "exceeds the physical bound"
 
 
 def static_force_limits(case: Case, bristles: Sequence[BristleGeometry],
-                        distance: float | None = None) -> tuple[float, ...]:
+                        distances: Sequence[float] | None = None) -> tuple[float, ...]:
     """E·A·δ/l of each bristle [N]: its force straight and fully compressed (0 if it cannot
-    reach the surface), δ = l + r - d with d the roots' ``distance`` from the surface at
-    their closest [mm] (default: motion.interaction_distance)."""
-    d = case.motion.interaction_distance if distance is None else distance
+    reach the surface), δ = l + r - d with d its root's distance from the surface at its
+    closest [mm] (``distances``, one per bristle: exubrush.run.prepared.root_distances;
+    default: motion.interaction_distance for every root)."""
+    if distances is None:
+        distances = [case.motion.interaction_distance] * len(bristles)
     return tuple(b.material.youngs_modulus * b.section.area * (b.length + b.tip_radius - d)
-                 / b.length if can_reach(b, d) else 0.0 for b in bristles)
+                 / b.length if can_reach(b, d) else 0.0
+                 for b, d in zip(bristles, distances, strict=True))
 
 
 def normal_force_bound(limits: Sequence[float]) -> float:

@@ -23,11 +23,16 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from typing import TYPE_CHECKING
 
 import numpy as np
 
+from exubrush.parameters.surface_kinds import PLANE
 from exubrush.world.kinematics import DOWN, SLIDE_AXES
 from exubrush.world.motion import HeadMotion
+
+if TYPE_CHECKING:
+    from exubrush.parameters.case import Case
 
 COARSE_SAMPLES = 65  # first samples over a window, before refinement
 MOST_SAMPLES = 200_000  # a check needing more samples is refused (a head that grazes)
@@ -217,3 +222,27 @@ def largest_acceleration(motion: HeadMotion, points: np.ndarray) -> float:
                                       axis=1)))
     return (rigid + float(np.linalg.norm(accelerations[:3]))
             + (float(np.sum(accelerations[3:])) + 2.0 * turn_rate**2) * arm)
+
+
+def root_distances(case: Case, roots: np.ndarray, motion: HeadMotion,
+                   closest: float | None = None) -> np.ndarray:
+    """Per root (n, 3) [mm, head frame], how close it comes to the level of the surface's
+    top [mm]: the interaction distance plus its own height over the roots' surface (not 0
+    for a misaligned head), and where pose terms move the head, at most the roots'
+    ``closest`` approach (:func:`closest_approach`, over every root: a turn
+    may bring any of them that low)."""
+    own = case.motion.interaction_distance + roots[:, 2]
+    return own if closest is None or motion.pose is None else np.minimum(own, closest)
+
+
+def sunken_roots(case: Case, distances: np.ndarray) -> list[str]:
+    """A misaligned head whose lowest root stands on or below the plane after the
+    approach (``distances`` from :func:`root_distances`), as one line; other surfaces'
+    roots are not checked (as a posed head's on a mesh: docs/motion.md)."""
+    lowest = float(np.min(distances))
+    if case.surface.kind != PLANE or lowest > 0.0:
+        return []
+    return [f"head.misalign_x, head.misalign_y: the misaligned head's lowest root comes "
+            f"{-lowest:.4g} mm below the plane at motion.interaction_distance = "
+            f"{case.motion.interaction_distance:g} mm; reduce the misalignment or raise the "
+            "interaction distance"]
