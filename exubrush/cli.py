@@ -140,7 +140,9 @@ def _prepared(case: str, overrides: list[str]):
         _fail(str(err))
     for warning in prepared.warnings:
         click.echo(f"exubrush: warning: {warning}", err=True)
-    if prepared.unreachable:
+    # some but not all: a head none of whose bristles reach has its own warning (it
+    # moves in the air, exubrush.run.prepared.in_the_air)
+    if 0 < prepared.unreachable < len(prepared.bristles):
         click.echo(f"exubrush: warning: {prepared.unreachable} of {len(prepared.bristles)} "
                    "bristles cannot reach the surface at motion.interaction_distance = "
                    f"{prepared.case.motion.interaction_distance:g} mm; they get no contact",

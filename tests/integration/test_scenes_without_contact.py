@@ -155,3 +155,30 @@ def test_an_impossible_pose_is_refused_in_one_line_before_anything_is_written(
     lines = done.stderr.strip().splitlines()
     assert len(lines) == 1 and said in lines[0], done.stderr
     assert not (tmp_path / "out").exists()
+
+
+AIR = """
+name = "air"
+[head]
+rows = 1
+columns = 2
+[motion]
+profile = "none"
+period = "0.1 s"
+periods = 1
+interaction_distance = "9 mm"
+[[motion.sine]]
+axis = "y"
+amplitude = "0.1 mm"
+frequency = "50 Hz"
+"""
+
+
+def test_a_head_in_the_air_is_told_once(tmp_path, cli_here):
+    # 5 + 0.4 mm of reach below roots 9 mm up: neither bristle touches; the warning that
+    # the head moves in the air says it, not a second one counting the bristles
+    (tmp_path / "air.toml").write_text(AIR)
+    done = cli_here("run", "air.toml", "--quiet", "--out", "out", cwd=tmp_path)
+    assert done.returncode == 0, done.stderr
+    warnings = [line for line in done.stderr.splitlines() if "warning" in line]
+    assert len(warnings) == 1 and "moves in the air" in warnings[0], done.stderr
