@@ -53,7 +53,7 @@ def read_unit_table(path: str | Path, columns: dict[str, str], what: str,
     if len(rows) < 3:
         raise ValueError(f"{name} needs a header and at least two rows, found {len(rows)} lines")
     labels = split_header(rows[0][1])
-    _check_layout(name, rows, labels, columns)
+    _check_layout(name, rows, labels, columns, optional)
     data = {}
     for label, target in columns.items():
         same = [cell.strip() for cell, (other, _) in zip(rows[0][1], labels, strict=True)
@@ -62,24 +62,29 @@ def read_unit_table(path: str | Path, columns: dict[str, str], what: str,
             raise ValueError(f"{name} has {len(same)} columns for '{label}' "
                              f"({', '.join(map(repr, same))}); keep one")
         index = next((k for k, (other, _) in enumerate(labels) if other == label), None)
-        if index is None:
-            if label in optional:
-                continue
-            raise ValueError(f"{name} has no column '{label} [unit]'")
+        if index is None:  # optional (_check_layout refused a required one missing)
+            continue
         data[label] = _column(name, rows, index, label, labels[index][1], target)
     return data
 
 
 def _check_layout(name: str, rows: list[tuple[int, list[str]]],
-                  labels: list[tuple[str, str]], columns: dict[str, str]) -> None:
-    """Refuse a header label that differs from one of ``columns`` only in case, and a row
-    with more cells than the header has columns (ValueError naming the file ``name``)."""
+                  labels: list[tuple[str, str]], columns: dict[str, str],
+                  optional: Collection[str]) -> None:
+    """Refuse a header label that differs from one of ``columns`` only in case, a required
+    column (not ``optional``) missing, and a row with more cells than the header has
+    columns (ValueError naming the file ``name``), in that order: a file that is no such
+    table at all is told by its missing column, not by the cells of some line."""
     wanted = {label.casefold(): label for label in columns}
     for label, unit in labels:  # 'Y [mm]' beside 'x [mm]' would be ignored as another column
         meant = wanted.get(label.casefold())
         if meant is not None and meant != label:
             raise ValueError(f"{name}: column '{label}' is not '{meant}' (labels are case "
                              f"sensitive); write '{meant} [{unit or columns[meant]}]'")
+    present = {label for label, _ in labels}
+    missing = [label for label in columns if label not in present and label not in optional]
+    if missing:
+        raise ValueError(f"{name} has no column '{missing[0]} [unit]'")
     for line, row in rows[1:]:  # "1,5" for 1.5 would shift the cells after it
         if any(cell.strip() for cell in row[len(labels):]):
             raise ValueError(f"{name}: line {line} has {len(row)} cells for {len(labels)} "

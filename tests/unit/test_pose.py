@@ -229,6 +229,9 @@ def test_a_pose_csv_converts_units(tmp_path):
      "column 'Y' is not 'y' (labels are case sensitive); write 'y [mm]'"),
     # a decimal comma: the row's cells after it would shift (x read as 1 mm, not 1.5)
     ("time [s],x [mm]\n0,0\n1,1,5\n", "line 3 has 3 cells for 2 columns (a decimal comma?"),
+    # no such table at all (a file of other text): told by its missing column, not by the
+    # cells of a line
+    ("root:x:0:0\nbin,x,1,1\nsync,x,2,2\n", "has no column 'time [unit]'"),
     # a brush head moves within 10 m and at 100 m/s at most (slide.TABLE_REACH, TABLE_RATE)
     ("time [s],x [mm]\n0,0\n1,1e300\n2,0\n",
      "'x' is 1e+300 mm from its first row at sample 2 (t = 1 s), beyond the 10000 mm"),
