@@ -35,8 +35,10 @@ from exubrush.contact.laws import (
     sphere_plane_force,
     sphere_surface_force,
 )
+from exubrush.contact.stick_slip import STATE_SIZE, committed_state, stick_slip_plane_force
 from exubrush.models.assembly import rigid_marker
 from exubrush.parameters.case import ContactLaw, Surface
+from exubrush.parameters.choices import STICK_SLIP
 from exubrush.parameters.surface_kinds import PLANE
 from exubrush.util.float_math import FLOAT_MATH
 from exubrush.world.surfaces import features, orientation
@@ -89,6 +91,10 @@ def contact_user_function(
         Read the friction's drop ratio of each surface feature from the connector's
         ``offset`` (set before every step by :func:`lagged_drop_hook`) instead of
         evaluating it at the current slip.
+
+    With ``law.friction_model = "stick-slip"`` the law is
+    exubrush.contact.stick_slip.stick_slip_plane_force, its state the connector's offset
+    (set before every step by :func:`stick_slip_hook`).
     """
     backend = law.backend
     if backend not in ("paper-symbolic", "paper-python", "paper-compiled"):
@@ -101,7 +107,12 @@ def contact_user_function(
         scale = 1.0
         if friction_window is not None:
             scale = cubic_step(t, friction_window[0], 0.0, friction_window[1], 1.0, math_backend)
-        if surface is None or surface.kind == PLANE:
+        if law.friction_model == STICK_SLIP:  # the plane only (exubrush.parameters.case)
+            load = stick_slip_plane_force(law, radius, displacement, rotation, velocity,
+                                          angularVelocity,
+                                          [offset[k] for k in range(STATE_SIZE)],
+                                          math_backend, scale)
+        elif surface is None or surface.kind == PLANE:
             load = sphere_plane_force(law, radius, displacement, velocity, angularVelocity,
                                       math_backend, scale, offset[0] if lagged else None)
         else:
@@ -126,21 +137,57 @@ def surface_marker(mbs, ground, surface: Surface | None):
     return rigid_marker(mbs, ground, [surface.x, surface.y, 0.0], orientation(surface))
 
 
-def add_tip_contact(mbs, surface_marker_number, tip_body, user_function, lagged=False):
+def add_tip_contact(mbs, surface_marker_number, tip_body, user_function,
+                    offset=(0.0,) * OFFSET_SIZE):
     """Connect the tip body's node (sphere centre) to the surface through ``user_function``;
-    the connector's frame is that of the surface marker. ``lagged``: the user function
-    reads drop ratios from the connector's offset, which start at 1 (no drop: the tip at
-    rest)."""
+    the connector's frame is that of the surface marker. ``offset``: the 6 numbers the user
+    function reads (:func:`initial_offset`; zeros where it reads none)."""
     tip_marker = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=tip_body, localPosition=[0, 0, 0]))
     return mbs.AddObject(
         eii.ObjectConnectorRigidBodySpringDamper(
             markerNumbers=[surface_marker_number, tip_marker],
             useIntrinsicFormulation=False,
             springForceTorqueUserFunction=user_function,
-            offset=[1.0] * OFFSET_SIZE if lagged else [0.0] * OFFSET_SIZE,
+            offset=list(offset),
             visualization=eii.VObjectConnectorRigidBodySpringDamper(show=False),
         )
     )
+
+
+def initial_offset(law: ContactLaw, lagged: bool) -> list[float]:
+    """The connector's offset before the first step: the stick/slip law's state (a drop
+    ratio of 1; the rest is set by :func:`stick_slip_hook` before the first step); the
+    lagged drop ratios at 1 (no drop: the tip at rest); else zeros, unread."""
+    if law.friction_model == STICK_SLIP:
+        return [0.0] * (STATE_SIZE - 1) + [1.0]
+    return [1.0] * OFFSET_SIZE if lagged else [0.0] * OFFSET_SIZE
+
+
+def stick_slip_hook(contacts: list, law: ContactLaw):
+    """A step hook ``(mbs, t)`` that commits each stick/slip contact's state
+    (exubrush.contact.stick_slip.committed_state) from the state the step starts at, and
+    writes it into the connector's offset where it changed.
+
+    ``contacts``: (connector, tip radius [mm]) of tip contacts whose user function is the
+    stick/slip law. Exudyn calls the pre-step function before every step attempt, after a
+    failed attempt with the state reset to the step's start, where committing again
+    changes nothing. The connector's local displacement, rotation, velocity and angular
+    velocity are its user function's arguments
+    (tests/integration/test_stick_slip_contact.py)."""
+    outputs = (exu.OutputVariableType.DisplacementLocal, exu.OutputVariableType.Rotation,
+               exu.OutputVariableType.VelocityLocal,
+               exu.OutputVariableType.AngularVelocityLocal)
+    states = [initial_offset(law, False) for _ in contacts]
+
+    def commit(mbs, t):
+        for k, (contact, radius) in enumerate(contacts):
+            tip = [mbs.GetObjectOutput(contact, output) for output in outputs]
+            state = committed_state(law, radius, *tip, states[k])
+            if state != states[k]:
+                states[k] = state
+                mbs.SetObjectParameter(contact, "offset", state)
+
+    return commit
 
 
 def add_compiled_tip_contact(mbs, connector, tip_node, surface: Surface, law: ContactLaw,

@@ -23,7 +23,9 @@ from exubrush.contact.exudyn_contact import (
     add_tip_contact,
     builtin_friction_blend,
     contact_user_function,
+    initial_offset,
     lagged_drop_hook,
+    stick_slip_hook,
 )
 from exubrush.contact.laws import builtin_contact_parameters, drop_can_lag
 from exubrush.models.assembly import rigid_marker
@@ -34,6 +36,7 @@ from exubrush.parameters.choices import (
     PAPER_COMPILED,
     PAPER_PYTHON,
     PAPER_SYMBOLIC,
+    STICK_SLIP,
 )
 from exubrush.parameters.surface_kinds import MESH, PLANE, SURFACE_KIND, SurfaceKind
 
@@ -118,7 +121,8 @@ class UserFunctionContact:
         if radius not in laws:
             laws[radius] = contact_user_function(site.mbs, case.contact, radius, window,
                                                  law_surface(case), lagged)
-        connector = add_tip_contact(site.mbs, marker, site.tip_body, laws[radius], lagged)
+        connector = add_tip_contact(site.mbs, marker, site.tip_body, laws[radius],
+                                    initial_offset(case.contact, lagged))
         return TipContact(connector, site.tip_node, radius, frame, lagged, None)
 
     def force_sensor(self, contact: TipContact):
@@ -126,8 +130,11 @@ class UserFunctionContact:
         return _sensor(contact.connector, exu.OutputVariableType.ForceLocal)
 
     def friction_hook(self, contacts: list[TipContact], case, window):
-        """The hook that sets the lagged contacts' drop ratios before a step
-        (exubrush.contact.exudyn_contact.lagged_drop_hook), None where none lags."""
+        """The hook that commits the stick/slip law's states before a step
+        (exubrush.contact.exudyn_contact.stick_slip_hook), or else sets the lagged contacts'
+        drop ratios (lagged_drop_hook); None where none lags."""
+        if case.contact.friction_model == STICK_SLIP:
+            return stick_slip_hook([(c.connector, c.radius) for c in contacts], case.contact)
         lagged = [(c.connector, c.radius) for c in contacts if c.lagged]
         if not lagged:
             return None
@@ -226,4 +233,4 @@ def lags_friction_drop(case) -> bool:
     (``solver.friction_drop = "lagged"``): with a back end whose law lags (the paper's law),
     and only where the law's friction falls (μ_s > μ_d)."""
     return (case.solver.friction_drop == "lagged" and BACKENDS[case.contact.backend].lags
-            and drop_can_lag(case.contact))
+            and drop_can_lag(case.contact) and case.contact.friction_model != STICK_SLIP)

@@ -22,7 +22,16 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from exubrush.parameters.choices import CONTACT_BACKENDS, EXUDYN_BUILTIN, MESH_UNITS, POSE_AXES
+from exubrush.parameters.choices import (
+    CONTACT_BACKENDS,
+    EXUDYN_BUILTIN,
+    FRICTION_MODELS,
+    MESH_UNITS,
+    PAPER_COMPILED,
+    PAPER_FRICTION,
+    POSE_AXES,
+    STICK_SLIP,
+)
 from exubrush.parameters.fields import Parameters, param
 from exubrush.parameters.head import Head
 from exubrush.parameters.settings import Limits, Output, Solver
@@ -80,17 +89,44 @@ class ContactLaw(Parameters):
         "coefficient, linear damping: an approximation, see docs/model.md)",
         "text", choices=CONTACT_BACKENDS,
     )
+    friction_model: str = param(
+        PAPER_FRICTION,
+        "the tip's friction: paper = the paper's regularised law (mu rises from 0 at zero "
+        "slip to mu_s at v_s: a loaded tip creeps); stick-slip = its Coulomb limit, a tip "
+        "held by a stiff tangential spring until F_t = mu_s F_n, then sliding at mu(v) "
+        "(docs/model.md, 'Friction without creep')",
+        "text", choices=FRICTION_MODELS,
+    )
+    stick_stretch: float = param(
+        0.001, "stick-slip: the elastic slip of a sticking tip at F_t = mu_s F_n", "mm", "um",
+        above=0.0, below=0.1,
+    )
+    stick_damping_time: float = param(
+        1e-5, "stick-slip: time constant of the damper beside the sticking tip's spring "
+              "(its force at slip speed v is that of the spring stretched by this time v)",
+        "s", "us", minimum=0.0, below=1.0,
+    )
     between_bristles: bool = param(
         False, "bristles touch each other (groups that can touch are solved together)")
     bristles: BristleContactLaw = field(default_factory=BristleContactLaw)
 
     def check(self) -> None:
-        """Cross-field rules: v_s < v_d."""
+        """Cross-field rules: v_s < v_d; the stick/slip law's needs."""
         if not self.static_velocity < self.dynamic_velocity:
             raise ValueError(
                 f"static_velocity ({self.static_velocity:g} mm/s) must be below "
                 f"dynamic_velocity ({self.dynamic_velocity:g} mm/s)"
             )
+        if self.friction_model == STICK_SLIP:
+            if self.static_friction <= 0.0:
+                raise ValueError("friction_model 'stick-slip' needs static_friction above 0 "
+                                 "(a tip with mu_s = 0 cannot stick; set friction_model "
+                                 "'paper' for frictionless contact)")
+            if self.backend in (EXUDYN_BUILTIN, PAPER_COMPILED):
+                raise ValueError(f"friction_model 'stick-slip' is written for the user-function "
+                                 f"back ends; contact.backend {self.backend!r} has its own "
+                                 "friction: set contact.backend 'paper-symbolic' or "
+                                 "'paper-python'")
 
 
 @dataclass(frozen=True)
@@ -371,6 +407,11 @@ class Case(Parameters):
                 f"contact.backend 'exudyn-builtin' brushes a plane only; surface.kind "
                 f"'{self.surface.kind}' needs contact.backend 'paper-symbolic' (or 'paper-python')"
             )
+        if self.contact.friction_model == STICK_SLIP and self.surface.kind != PLANE:
+            raise ValueError(
+                f"contact.friction_model 'stick-slip' is written for the plane (its anchor "
+                f"lives in the plane's frame); surface.kind '{self.surface.kind}' needs "
+                "contact.friction_model 'paper'")
         if (self.solver.line_search in ("always", "after-cut")
                 and self.model.node_rotation == "rotation-vector"):
             raise ValueError(

@@ -23,3 +23,8 @@ POSE_AXES = ("x", "y", "z", "rx", "ry", "rz")
 PAPER_SYMBOLIC, PAPER_PYTHON, PAPER_COMPILED, EXUDYN_BUILTIN = (
     "paper-symbolic", "paper-python", "paper-compiled", "exudyn-builtin")
 CONTACT_BACKENDS = (PAPER_SYMBOLIC, PAPER_PYTHON, PAPER_COMPILED, EXUDYN_BUILTIN)
+
+# the tip's friction law (contact.friction_model): the paper's regularised law
+# (exubrush.contact.laws) or its Coulomb limit with a stick state (exubrush.contact.stick_slip)
+PAPER_FRICTION, STICK_SLIP = "paper", "stick-slip"
+FRICTION_MODELS = (PAPER_FRICTION, STICK_SLIP)

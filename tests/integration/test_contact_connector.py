@@ -12,6 +12,7 @@ from exubrush.contact.exudyn_contact import (
     add_tip_contact,
     builtin_friction_blend,
     contact_user_function,
+    initial_offset,
     lagged_drop_hook,
     surface_marker,
 )
@@ -182,7 +183,7 @@ def _applied_load(surface, backend, centre, velocity, omega, lagged=False):
     law_surface = None if surface.kind == "plane" else surface
     function = contact_user_function(mbs, law, RADIUS, surface=law_surface, lagged=lagged)
     contact = add_tip_contact(mbs, surface_marker(mbs, ground, surface), body["bodyNumber"],
-                              function, lagged)
+                              function, initial_offset(law, lagged))
     if lagged:
         hook = lagged_drop_hook([(contact, RADIUS)], law, law_surface)
         mbs.SetPreStepUserFunction(lambda mbs, t: hook(mbs, t) or True)
