@@ -53,6 +53,13 @@ FRICTION = Reference(
     "their refs. [39-42]",
     "the friction of a tip on the surface",
 )
+HAESSIG_FRIEDLAND = Reference(
+    "haessig1991",
+    "Haessig, D.A., Friedland, B.: On the modeling and simulation of friction. Journal of "
+    "Dynamic Systems, Measurement, and Control 113(3), 354-362 (1991)",
+    "the stick/slip friction law's stick state: a tangential spring whose anchor is reset "
+    "where the spring's force would exceed the friction limit (their reset integrator)",
+)
 HOWELL = Reference(
     "howell2001",
     "Howell, L.L.: Compliant Mechanisms. Wiley, New York (2001)",
@@ -73,7 +80,7 @@ BRISTLE_CONTACT = Reference(
     "the contact between bristles",
 )
 
-LITERATURE = (PAPER, HOWELL, TIMOSHENKO_GERE)
+LITERATURE = (PAPER, HOWELL, TIMOSHENKO_GERE, HAESSIG_FRIEDLAND)
 """The references that are publications (the others point into the paper or the docs)."""
 
 
@@ -93,6 +100,9 @@ class _ContactChoice(Protocol):
     @property
     def between_bristles(self) -> bool: ...
 
+    @property
+    def friction_model(self) -> str: ...
+
 
 class CaseChoices(Protocol):
     """What :func:`run_references` reads of a case (an
@@ -107,9 +117,12 @@ class CaseChoices(Protocol):
 
 def run_references(case: CaseChoices) -> list[dict[str, str]]:
     """The references a run of ``case`` relied on, as run.json records them: the paper and
-    its contact laws always (every tip touches the surface), Howell for PRB and Timoshenko
-    & Gere for its buckling link, exubrush's law where bristles touch each other."""
+    its contact laws always (every tip touches the surface), Haessig & Friedland for the
+    stick/slip friction, Howell for PRB and Timoshenko & Gere for its buckling link,
+    exubrush's law where bristles touch each other."""
     used = [PAPER, FLORES, FRICTION]
+    if case.contact.friction_model == "stick-slip":
+        used.append(HAESSIG_FRIEDLAND)
     if case.model.kind == "prb":
         used.append(HOWELL)
         if case.model.prb_link == "buckling":

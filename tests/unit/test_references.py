@@ -14,6 +14,7 @@ from exubrush.util.references import (
     BRISTLE_CONTACT,
     FLORES,
     FRICTION,
+    HAESSIG_FRIEDLAND,
     HOWELL,
     LITERATURE,
     PAPER,
@@ -47,6 +48,12 @@ def test_prb_adds_howell_and_its_buckling_link_timoshenko_and_gere():
     assert _keys(rigid) == [PAPER.key, FLORES.key, FRICTION.key, HOWELL.key]
 
 
+def test_the_stick_slip_law_adds_its_reset_integrators_source():
+    case = orthogonal_case()
+    stick_slip = case.replace(contact=case.contact.replace(friction_model="stick-slip"))
+    assert _keys(stick_slip) == [PAPER.key, FLORES.key, FRICTION.key, HAESSIG_FRIEDLAND.key]
+
+
 def test_contact_between_bristles_adds_its_law():
     case = orthogonal_case()
     touching = case.replace(contact=case.contact.replace(between_bristles=True))
@@ -61,7 +68,8 @@ def test_a_record_has_a_doi_only_where_the_reference_has_one():
 
 def test_docs_model_cites_every_reference_as_the_module_does():
     text = _flat((ROOT / "docs" / "model.md").read_text(encoding="utf-8"))
-    for reference in (PAPER, FLORES, FRICTION, HOWELL, TIMOSHENKO_GERE, BRISTLE_CONTACT):
+    for reference in (PAPER, FLORES, FRICTION, HOWELL, TIMOSHENKO_GERE, BRISTLE_CONTACT,
+                      HAESSIG_FRIEDLAND):
         assert _flat(reference.citation) in text, reference.key
     assert f"https://doi.org/{PAPER.doi}" in text
 
