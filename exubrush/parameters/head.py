@@ -89,9 +89,12 @@ BUILT_IN_MATERIALS = {
 TUFT_PACKINGS = ("hexagonal", "random")
 # the imperfections' ranges (docs/model.md, "Imperfections of a real head"): a tilt spread or
 # misalignment beyond this is no small error but another head; a length spread of half
-# the length or more would trim some bristles to stubs
+# the length or more would trim some bristles to stubs; a root jitter beyond 1 mm moves a
+# root by more than a blade's width (and a bristle with no neighbour, whose jitter no
+# neighbour bounds, anywhere): another layout, not a placement error [mm]
 IMPERFECT_TILT_LIMIT = math.radians(10.0)
 LENGTH_SPREAD_LIMIT = 0.5
+ROOT_JITTER_LIMIT = 1.0
 
 
 def section_diameter(section: str, width: float, height: float) -> float:
@@ -187,7 +190,8 @@ class Head(Parameters):
         minimum=0.0, below=LENGTH_SPREAD_LIMIT)
     root_jitter: float = param(
         0.0, "imperfect head: half-width of the uniform spread of each root's x and y, "
-             "drawn per bristle (grid and list layouts)", "mm", minimum=0.0)
+             "drawn per bristle (grid and list layouts)", "mm", minimum=0.0,
+        below=ROOT_JITTER_LIMIT)
     misalign_x: float = param(
         0.0, "imperfect head: tilt of the whole head about its long axis x through its "
              "centre on the roots' surface (roots and bristles turned)", "rad", "deg",

@@ -64,6 +64,8 @@ MALFORMED = [
     ("set", ["surface.kind='sphere'", "surface.x='60 mm'"],
      "surface: no bristle can reach the sphere at x = 60 mm"),
     ("set", ["surface.yaw=1"], "surface.yaw: 1 has no unit"),
+    ("set", ["head.rows=1", "head.columns=1", "head.root_jitter='50 mm'"],
+     "head.root_jitter: 50 mm must be < 1 mm"),
     # the stick/slip friction law
     ("set", ["contact.friction_model='coulomb'"],
      "contact.friction_model: 'coulomb' is not one of 'paper', 'stick-slip'"),
