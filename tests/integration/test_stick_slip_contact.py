@@ -174,3 +174,40 @@ def test_a_sphere_pulled_gently_rolls_without_slipping():
     # it rolls: the centre advances r per radian (to the stick's micrometre)
     assert x[-1] > 0.1
     assert x[-1] == pytest.approx(RADIUS * angle[-1], abs=2 * LAW.stick_stretch)
+
+
+def _one_bristle(*overrides):
+    """The paper's orthogonal case on one bristle, one period: (flat-zone mean F_n of its
+    whole strokes [N], the largest F_n in each reversal zone [N])."""
+    from exubrush.output.experiment import reversal_zones, strokes
+    from exubrush.parameters.io import load_case
+    from exubrush.simulation import simulate
+
+    case = load_case("orthogonal", ["head.rows=1", "head.columns=1", "motion.periods=1",
+                                    *overrides])
+    results = simulate(case, progress=False)
+    assert results.metadata["status"] == "completed", results.metadata["message"]
+    time, force = results.time, results.normal_force
+    velocity = np.gradient(results.slider_position, time)
+    flat = np.zeros(time.size, dtype=bool)
+    for stroke in strokes(time, velocity, 0.8):
+        flat |= (time >= stroke.flat_start) & (time <= stroke.flat_end)
+    peaks = [np.max(force[(time >= a) & (time <= b)])
+             for a, b in reversal_zones(time, velocity, 0.8)]
+    return float(np.mean(force[flat])), np.array(peaks)
+
+
+def test_a_bristle_of_the_papers_head_gets_the_papers_law_without_its_creep():
+    # the paper's law with its band 100x narrower has converged (docs/model.md, 'The
+    # friction band's sensitivity'); at its own band (1.2 mm/s) the tip creeps and the
+    # second peak is a third lower
+    stick_slip = _one_bristle("contact.friction_model='stick-slip'")
+    narrow = _one_bristle("contact.static_velocity='0.012 mm/s'",
+                          "contact.dynamic_velocity='0.015 mm/s'")
+    paper = _one_bristle()
+    # measured: flat 16.07 against 16.08 mN, peaks within 0.9 %; the bounds leave room
+    # for the narrow band's own residual creep, not for the paper band's 7 % and 35 %
+    assert stick_slip[0] == pytest.approx(narrow[0], rel=0.01)
+    np.testing.assert_allclose(stick_slip[1], narrow[1], rtol=0.03)
+    assert paper[0] < 0.95 * stick_slip[0]
+    assert paper[1][1] < 0.8 * stick_slip[1][1]
