@@ -19,7 +19,12 @@ written as an elastic-plastic return map (the "reset integrator" of Haessig & Fr
   the load too, as F_n^(1/3); here simply as F_n).
 - **Slip** beyond: F_t = −μ F_n w/|w|, with μ = μ_s r, r the paper's drop from μ_s at v_s
   to μ_d at v_d (exubrush.contact.laws.friction_drop) taken at the slip speed of the
-  step's start, so F_t has no derivative in the slip speed. Between steps the anchor is
+  step's start, so F_t has no derivative in the slip speed. Where the friction rises with
+  the speed instead (μ_d > μ_s), r is taken at the current slip speed: a rise taken a step
+  behind lets a light tip swing between too little friction and too much from step to
+  step (one bristle of the paper's head with μ_s = 0.6 took 41,234 Jacobians against 133),
+  and a rising friction is what Newton handles well (as in the paper's law, whose rise is
+  never lagged: exubrush.contact.laws.drop_can_lag). Between steps the anchor is
   dragged along so that |u| <= s_e (:func:`committed_state`): a sliding tip is held back
   by μ F_n against its travel (w turns from u towards v_c as the slip speed exceeds
   s_e / τ), and a tip that stops, or turns back, sticks at once.
@@ -45,7 +50,7 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING
 
-from exubrush.contact.laws import friction_drop, normal_force, plane_slip
+from exubrush.contact.laws import drop_can_lag, friction_drop, normal_force, plane_slip
 from exubrush.util.float_math import FLOAT_MATH
 
 if TYPE_CHECKING:  # the law reads the parameters' attributes only
@@ -99,7 +104,11 @@ def stick_slip_plane_force(law: ContactLaw, radius: float, centre, rotation, vel
     w_x = u_x + law.stick_damping_time * slip_x
     w_y = u_y + law.stick_damping_time * slip_y
     length = m.max(m.sqrt(w_x * w_x + w_y * w_y), law.stick_stretch)
-    scale = -friction_scale * law.static_friction * state[DROP] * force_n / length
+    if drop_can_lag(law):
+        drop = state[DROP]
+    else:
+        drop = friction_drop(law, m.sqrt(slip_x * slip_x + slip_y * slip_y + 1e-12), m)
+    scale = -friction_scale * law.static_friction * drop * force_n / length
     force_x, force_y = scale * w_x, scale * w_y
     return [force_x, force_y, force_n, radius * force_y, -radius * force_x, 0.0]
 

@@ -130,3 +130,18 @@ def test_the_rolling_matrix_gives_the_contact_points_travel_of_the_exact_rotatio
         travel = (j_xy * rates[1] + j_xz * rates[2], RADIUS * rates[0] + j_yz * rates[2])
         # finite difference over 1e-7 s: agreement to ~1e-6 of the rates
         assert travel == pytest.approx((-RADIUS * omega[1], RADIUS * omega[0]), abs=1e-6)
+
+
+def test_a_friction_that_rises_with_speed_is_taken_at_the_current_slip_not_lagged():
+    # mu_s 0.6 < mu_d 0.76: a lagged rise made a light tip swing from step to step (one
+    # bristle of the paper's head: 41,234 Jacobians against 133 for the paper's law)
+    rising = ContactLaw(friction_model="stick-slip", static_friction=0.6)
+    state = _state_at((0.0, 0.0, 0.0))
+    state[DROP] = 1.0  # what a tip at rest at the step's start would have
+    centre = (0.05, 0.0, RADIUS - DEPTH)
+    load = stick_slip_plane_force(rising, RADIUS, centre, AT_REST, (20.0, 0.0, 0.0), AT_REST,
+                                  state)
+    assert -load[0] == pytest.approx(0.76 * NORMAL, rel=1e-12)  # mu_d at 20 mm/s > v_d
+    slow = stick_slip_plane_force(rising, RADIUS, centre, AT_REST, (1.0, 0.0, 0.0), AT_REST,
+                                  state)
+    assert -slow[0] == pytest.approx(0.6 * NORMAL, rel=1e-12)  # mu_s below v_s
