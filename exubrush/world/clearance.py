@@ -27,7 +27,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from exubrush.parameters.surface_kinds import PLANE
+from exubrush.parameters.surface_kinds import PLANE, TOOTH_ROW
 from exubrush.world.kinematics import DOWN, SLIDE_AXES
 from exubrush.world.motion import HeadMotion
 
@@ -235,14 +235,23 @@ def root_distances(case: Case, roots: np.ndarray, motion: HeadMotion,
     return own if closest is None or motion.pose is None else np.minimum(own, closest)
 
 
+# the surfaces whose top is level (z = 0) wherever the slide carries a root: a root at or
+# below that level is inside the surface (a tooth row's gaps are too narrow to hold a
+# stroke's worth of roots); a cylinder, a sphere and a mesh fall away from their top, and a
+# root below it may pass beside them: not checked (docs/model.md)
+LEVEL_TOPS = {PLANE: "the plane", TOOTH_ROW: "the tooth tops"}
+
+
 def sunken_roots(case: Case, distances: np.ndarray) -> list[str]:
-    """A misaligned head whose lowest root stands on or below the plane after the
-    approach (``distances`` from :func:`root_distances`), as one line; other surfaces'
-    roots are not checked (as a posed head's on a mesh: docs/motion.md)."""
+    """A misaligned head whose lowest root stands on or below a level surface's top after
+    the approach (``distances`` from :func:`root_distances`; :data:`LEVEL_TOPS`), as one
+    line; other surfaces' roots are not checked (as a posed head's on a mesh:
+    docs/motion.md)."""
     lowest = float(np.min(distances))
-    if case.surface.kind != PLANE or lowest > 0.0:
+    if case.surface.kind not in LEVEL_TOPS or lowest > 0.0:
         return []
     return [f"head.misalign_x, head.misalign_y: the misaligned head's lowest root comes "
-            f"{-lowest:.4g} mm below the plane at motion.interaction_distance = "
+            f"{-lowest:.4g} mm below {LEVEL_TOPS[case.surface.kind]} at "
+            f"motion.interaction_distance = "
             f"{case.motion.interaction_distance:g} mm; reduce the misalignment or raise the "
             "interaction distance"]

@@ -28,6 +28,10 @@ import pytest
     (["head.misalign_y='9.9 deg'", "motion.interaction_distance='1 mm'"],
      "head.misalign_x, head.misalign_y: the misaligned head's lowest root comes 0.7021 mm "
      "below the plane", "orthogonal"),
+    # the tooth row's tops are level with the plane: the same root would be inside a tooth
+    (["head.misalign_y='9.9 deg'", "motion.interaction_distance='1 mm'"],
+     "head.misalign_x, head.misalign_y: the misaligned head's lowest root comes 0.7021 mm "
+     "below the tooth tops", "interdental"),
 ])
 def test_an_imperfection_out_of_range_is_refused_in_one_line(tmp_path, cli_here, settings,
                                                              message, case):
