@@ -126,7 +126,9 @@ def contact_parameters(a0, a1, b0, b1):
 def candidate_pairs(chains: Chains, points: np.ndarray, margin: float = 0.0) -> np.ndarray:
     """Segment pairs (k, 2) of different bristles whose capsules come within ``margin``
     [mm] of each other: bounding spheres from a k-d tree first, then the segments'
-    closest distance."""
+    closest distance. Sorted by the first segment, then the second: the forces of the
+    pairs add up in this order, so a search with another margin, or at another moment,
+    that finds the same touching pairs gives the same forces to the last bit."""
     a, b = points[chains.starts], points[chains.ends]
     centre = 0.5 * (a + b)
     bound = 0.5 * np.linalg.norm(b - a, axis=1) + chains.radius
@@ -141,7 +143,8 @@ def candidate_pairs(chains: Chains, points: np.ndarray, margin: float = 0.0) -> 
     s, t = points_ij[0]
     gap = np.linalg.norm((a[j] + t[:, None] * (b[j] - a[j])) - (a[i] + s[:, None] * (b[i] - a[i])),
                          axis=1) - chains.radius[i] - chains.radius[j]
-    return pairs[gap <= margin]
+    pairs = pairs[gap <= margin]
+    return pairs[np.lexsort((pairs[:, 1], pairs[:, 0]))]
 
 
 @dataclass(frozen=True)

@@ -127,11 +127,14 @@ class BristleContact:
         current (converged) state, their capsules grown by ``reach`` [mm]
         (:func:`contact_refresh`).
 
-        The pairs are searched again only when the last search no longer covers them (a
-        Verlet list): a pair left out then was more than its reach apart, and no point has
-        moved more than d since, so it is still more than that reach − 2d apart (a
-        segments' distance changes by at most twice its ends' largest move). A new search
-        grows the reach by :data:`SKIN` so that it lasts."""
+        The pairs are searched again when the last search no longer covers them (a Verlet
+        list): a pair left out then was more than its reach apart, and no point has moved
+        more than d since, so it is still more than that reach − 2d apart (a segments'
+        distance changes by at most twice its ends' largest move). A new search grows the
+        reach by :data:`SKIN` so that it lasts. They are also searched again when the last
+        search reached more than two skins farther than this step needs: kept while it
+        covers, a list keeps every pair that one fast or long step needed, and the force
+        function pays for every candidate at every residual (docs/decisions/0025)."""
         q, _ = self._state(mbs)
         points = self.points(q)
         if not np.all(np.abs(points) < DIVERGED):  # search at every call instead
@@ -139,7 +142,8 @@ class BristleContact:
             return
         if self.searched_points is not None:  # set and cleared with candidate_corners
             moved = np.sqrt(np.max(np.sum((points - self.searched_points) ** 2, axis=1)))
-            if self.searched_reach - 2.0 * moved >= reach:
+            if reach <= self.searched_reach - 2.0 * moved and (
+                    self.searched_reach <= reach + 2.0 * SKIN):
                 return
         self.searched_points, self.searched_reach = points, reach + SKIN
         self.candidate_corners = pair_corners(self.chains, self._pairs(points, reach + SKIN))
@@ -170,25 +174,28 @@ class BristleContact:
         return totals
 
 
-def contact_refresh(contact: BristleContact, step_size: float, margin: float = 0.1):
-    """Step hook: the candidate pairs for the coming step (BristleContact.refresh), with the
-    capsules grown by ``margin`` [mm] plus twice the distance the fastest point covers in
-    one largest step at its current speed: pairs farther apart than that cannot touch
-    before the next refresh, so the force function need not search. The largest step is
-    the larger of the coming step and the solver's cap for it (larger in the middle of a
-    stroke: exubrush.run.step_policy.motion_step_cap, which must run before this hook), at
-    least ``step_size`` [s]."""
+def contact_refresh(contact: BristleContact, margin: float = 0.1):
+    """Step hook: the candidate pairs for the coming step attempt (BristleContact.refresh),
+    with the capsules grown by ``margin`` [mm] plus twice the distance the fastest point
+    covers in the attempt's step at its current speed relative to the group's common
+    motion: pairs farther apart than that cannot touch within the attempt, so the force
+    function need not search. Exudyn calls the hook before every attempt, with t at the
+    attempt's end, so the attempt's step is known (a longer one later gets its own refresh);
+    the common motion is the midrange of the points' velocities per axis, a translation
+    of all of them (the handle's slide) that brings no pair closer.
+
+    Sized by the largest step the solver might take (10 ms mid-stroke) and absolute speeds
+    (the slide's), the list held nearly every segment pair of a 19-filament tuft through
+    the stroke, whose steps are mostly microseconds (docs/decisions/0025)."""
+    start = exu.ConfigurationType.StartOfStep
 
     def refresh(mbs, t):
-        q_t = np.asarray(mbs.systemData.GetODE2Coordinates_t())[contact.system_indices]
-        speed = np.linalg.norm(q_t[contact.coordinates], axis=1).max(initial=0.0)
-        largest = step_size
-        solver = mbs.sys.get("dynamicSolver")
-        if solver is not None:
-            # a cap lowered now takes hold within a few steps: the step may still be larger
-            record = solver.it
-            largest = max(step_size, record.maxStepSize, record.currentStepSize)
-        contact.refresh(mbs, margin + 2.0 * speed * largest)
+        data = mbs.systemData
+        q_t = np.asarray(data.GetODE2Coordinates_t())[contact.system_indices]
+        velocities = q_t[contact.coordinates]
+        common = 0.5 * (velocities.max(axis=0) + velocities.min(axis=0))
+        speed = np.linalg.norm(velocities - common, axis=1).max()
+        contact.refresh(mbs, margin + 2.0 * speed * max(t - data.GetTime(start), 0.0))
 
     return refresh
 

@@ -444,7 +444,7 @@ def add_step_hooks(scene: Scene, prepared: PreparedCase, tips: list) -> None:
         from exubrush.contact.exudyn_between import contact_refresh
 
         hooks.add(SAMPLING, _contact_sampler(touching, case.output.interval))
-        hooks.add(CANDIDATES, contact_refresh(touching, case.solver.step_size))
+        hooks.add(CANDIDATES, contact_refresh(touching))
 
 
 def _add_line_search(scene: Scene, setting: str) -> None:

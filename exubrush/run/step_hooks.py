@@ -32,8 +32,8 @@ term acts (exubrush.run.solver)."""
 STEP_SIZE = "step size"
 """The largest step for the steps to come (exubrush.run.step_policy)."""
 CANDIDATES = "candidate pairs"
-"""The candidate pairs of contact between bristles for the coming step, sized by the
-largest step (after :data:`STEP_SIZE`)."""
+"""The candidate pairs of contact between bristles for the coming step attempt, sized by
+its step (last: the attempt is set by then)."""
 
 PHASES = (AFTER_CUT, DRIVE, SURFACES, FRICTION, SAMPLING, JACOBIAN, STEP_SIZE, CANDIDATES)
 

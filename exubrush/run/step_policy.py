@@ -41,7 +41,8 @@ def sliding_step_largest(case: Case, motion: HeadMotion, tips: list):
     the step never grows: a sliding step no larger than ``step_size``, or a surface kind
     without them (SurfaceKind.larger_steps, exubrush.parameters.surface_kinds). Groups of
     bristles that touch each other take them too (since 0.12.0): their broad phase looks
-    as far ahead as the step's cap (exubrush.contact.exudyn_between.contact_refresh)."""
+    as far ahead as each step attempt
+    (exubrush.contact.exudyn_between.contact_refresh)."""
     solver = case.solver
     sliding_step = min(solver.sliding_step_factor * solver.step_size, case.output.interval)
     if not (SURFACE_KIND[case.surface.kind].larger_steps and sliding_step > solver.step_size):

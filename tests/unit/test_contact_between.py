@@ -273,3 +273,102 @@ def test_a_groups_compiled_jacobian_is_the_slope_of_its_compiled_forces():
         # times half its step (in the soft zone k/δ ≈ 1.25e4 N/mm² times 5e-9 mm, 1e-6 of
         # the 50 N/mm stiffness; measured 1e-5 of the largest slope where two terms add up)
         np.testing.assert_allclose(jacobian, slope, atol=3e-5 * np.abs(slope).max())
+
+
+def _upright_tuft(columns: int, rows: int, spacing: float, segments: int = 3):
+    """Chains of ``columns`` x ``rows`` upright filaments 1.5 mm long, ``spacing`` [mm]
+    between neighbours' axes, and their points (root first)."""
+    polylines, points = [], []
+    for column in range(columns):
+        for row in range(rows):
+            polylines.append(list(range(len(points), len(points) + segments + 1)))
+            points += [[column * spacing, row * spacing, 0.5 * k] for k in range(segments + 1)]
+    return Chains.from_polylines(polylines, [R] * len(polylines)), np.array(points, float)
+
+
+def test_candidate_pairs_are_sorted_so_a_wider_search_gives_the_same_forces():
+    # the forces add up in the list's order: a list searched with another reach, or at
+    # another moment, must give the touching pairs' forces to the last bit
+    chains, points = _upright_tuft(4, 4, 2 * R - 0.002)
+    points[:, :2] += 0.02 * np.sin(np.arange(points.size).reshape(points.shape))[:, :2]
+    narrow, wide = candidate_pairs(chains, points), candidate_pairs(chains, points, 1.0)
+    for pairs in (narrow, wide):
+        assert np.array_equal(pairs, pairs[np.lexsort((pairs[:, 1], pairs[:, 0]))])
+    assert len(wide) > 2 * len(narrow) > 0
+    assert np.array_equal(_group_forces(chains, points, narrow, LAW),
+                          _group_forces(chains, points, wide, LAW))
+
+
+class _SystemData:
+    """What BristleContact and contact_refresh read of ``mbs.systemData``: the state at a
+    step attempt's start (time ``start`` [s], the object's coordinates and velocities)."""
+
+    def __init__(self, q, q_t, start):
+        self.q, self.q_t, self.start = q, q_t, start
+
+    def GetODE2Coordinates(self, *configuration):  # noqa: N802 (Exudyn's names)
+        return self.q
+
+    def GetODE2Coordinates_t(self, *configuration):  # noqa: N802
+        return self.q_t
+
+    def GetTime(self, *configuration):  # noqa: N802
+        return self.start
+
+
+def _contact_of(chains, points):
+    from exubrush.contact.exudyn_between import BristleContact
+
+    size = points.size
+    return BristleContact(chains=chains, law=LAW, coordinates=np.arange(size).reshape(-1, 3),
+                          base=points, size=size, system_indices=np.arange(size))
+
+
+def _bristles_paired(contact):
+    """The bristle pairs (lower index first) that the candidate list holds."""
+    corners = contact.candidate_corners[0]
+    owner = np.zeros(len(contact.base), int)
+    owner[contact.chains.starts] = contact.chains.bristle
+    owner[contact.chains.ends] = contact.chains.bristle
+    return {tuple(sorted(pair)) for pair in owner[corners[:, [0, 2]]].tolist()}
+
+
+@pytest.mark.parametrize("closing", [0.0, 100.0])
+def test_candidates_are_sized_by_the_attempts_step_and_speeds_relative_to_the_slide(closing):
+    # three filaments in a row, the first two touching, the third 0.3 mm from the second,
+    # all sliding at 100 mm/s along the row (the head's slide), a 2 ms attempt: the slide
+    # brings no pair closer, so the third is no candidate (with the slide's speed and a
+    # 10 ms step it was); closing it at 100 mm/s within the attempt (0.2 mm each way)
+    # makes it one
+    from exubrush.contact.exudyn_between import contact_refresh
+
+    chains, points = _upright_tuft(3, 1, 2 * R)
+    points[8:, 0] += 0.3
+    velocities = np.zeros_like(points)
+    velocities[:, 0] = 100.0
+    velocities[8:, 0] -= closing
+    contact = _contact_of(chains, points)
+
+    class System:
+        systemData = _SystemData(np.zeros(points.size), velocities.ravel(), 1.0)
+        sys = {}
+
+    contact_refresh(contact)(System, 1.002)
+    expected = {(0, 1)} | ({(1, 2)} if closing else set())
+    assert _bristles_paired(contact) == expected
+
+
+def test_a_candidate_list_searched_for_a_far_reach_is_searched_again_for_a_near_one():
+    # a list searched while a filament moved fast holds pairs that a slow step cannot
+    # bring together: the next refresh that needs less than two skins less searches again
+    chains, points = _upright_tuft(3, 1, 2 * R)
+    points[8:, 0] += 0.3
+    contact = _contact_of(chains, points)
+
+    class System:
+        systemData = _SystemData(np.zeros(points.size), np.zeros(points.size), 0.0)
+
+    contact.refresh(System, 1.0)
+    assert _bristles_paired(contact) == {(0, 1), (1, 2), (0, 2)}
+    contact.refresh(System, 0.1)
+    assert _bristles_paired(contact) == {(0, 1)}
