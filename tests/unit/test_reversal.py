@@ -8,7 +8,13 @@ import math
 import numpy as np
 import pytest
 
-from exubrush.output.reversal import reversal_metrics, width_above
+from exubrush.output.reversal import (
+    SeedRun,
+    configuration_table,
+    markdown_table,
+    reversal_metrics,
+    width_above,
+)
 
 OMEGA = math.pi / 6.0  # rad/s, the synthetic slide's
 SPEED = 15.0 * OMEGA  # mm/s, its peak slide speed
@@ -72,3 +78,47 @@ def test_a_reversal_without_a_peak_has_no_duration(sine_run):
 def test_the_friction_band_benchmark_uses_the_package_definition(benchmark_script):
     # one definition for the benchmark, the sweep summary and the study
     assert benchmark_script("friction_band").reversal_metrics is reversal_metrics
+
+
+def _run(configuration, seed, ratio, forward, backward=None, duration=0.5, wall=10.0):
+    backward = forward if backward is None else backward
+    flat = {1: {"normal_force": forward, "tangential_force": 0.7 * forward},
+            -1: {"normal_force": backward, "tangential_force": 0.7 * backward}}
+    return SeedRun(configuration, seed, {"flat": flat, "ratio": ratio, "duration": duration},
+                   wall)
+
+
+def test_the_study_table_compares_each_seed_with_the_reference_seed():
+    runs = [_run("ideal", 1, 4.0, 1.0), _run("ideal", 2, 6.0, 2.0),
+            _run("tilt", 1, 2.0, 1.1, 0.95), _run("tilt", 2, 3.3, 2.0),
+            _run("tilt", 3, 9.0, 5.0, duration=math.nan)]  # no reference seed 3
+    ideal, tilt = configuration_table(runs, "ideal", flat_band=0.16)
+    assert ideal["configuration"] == "ideal" and ideal["seeds"] == [1, 2]
+    assert ideal["ratio_change"]["mean"] == 0.0 and not ideal["on_target"]
+    assert tilt["seeds"] == [1, 2, 3]
+    # the spread over all three seeds, NaN durations left out
+    assert tilt["ratio"] == pytest.approx({"mean": 14.3 / 3, "min": 2.0, "max": 9.0})
+    assert tilt["duration"] == pytest.approx({"mean": 0.5, "min": 0.5, "max": 0.5})
+    # changes only over the shared seeds 1 and 2: R 2/4 - 1 and 3.3/6 - 1
+    assert tilt["ratio_change"] == pytest.approx({"mean": -0.475, "min": -0.5, "max": -0.45})
+    # flat F_n per direction: +10 % and -5 % (seed 1), 0 and 0 (seed 2)
+    assert tilt["flat_normal_change"] == pytest.approx({"mean": 0.0125, "min": -0.05,
+                                                        "max": 0.1})
+    assert tilt["within_band"]  # 10 % within 16 %
+    assert tilt["on_target"]  # R / R_ideal 0.525 within 0.5 x (1 ± 0.2)
+    assert not configuration_table(runs, "ideal", flat_band=0.08)[1]["within_band"]
+
+
+def test_the_study_table_refuses_a_missing_reference_and_a_repeated_seed():
+    with pytest.raises(ValueError, match="no run of the reference configuration 'ideal'"):
+        configuration_table([_run("tilt", 1, 2.0, 1.0)], "ideal", flat_band=0.16)
+    with pytest.raises(ValueError, match="seed 1 twice"):
+        configuration_table([_run("ideal", 1, 2.0, 1.0)] * 2, "ideal", flat_band=0.16)
+
+
+def test_the_markdown_table_has_a_row_per_configuration_in_mN():
+    runs = [_run("ideal", 1, 4.0, 0.5), _run("tilt", 1, 2.0, 0.55, duration=math.nan)]
+    lines = markdown_table(configuration_table(runs, "ideal", flat_band=0.16)).splitlines()
+    assert len(lines) == 4 and all(line.count("|") == 14 for line in lines)
+    assert lines[3].startswith("| tilt | 1 | 550.0 (550.0 to 550.0) |")
+    assert "| 2.00 (2.00 to 2.00) | -50.0 (-50.0 to -50.0) | – | +10.0" in lines[3]
