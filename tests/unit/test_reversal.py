@@ -3,7 +3,9 @@ tests/conftest.py (x = 15 mm sin(ω τ), ω = π/6 rad/s; F_n = 1 + 0.5 exp(-(v 
 F_t = 0.7 tanh(v)), whose flat levels, peaks and peak widths are known in closed form."""
 
 import dataclasses
+import importlib.util
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -15,6 +17,7 @@ from exubrush.output.reversal import (
     reversal_metrics,
     width_above,
 )
+from exubrush.parameters.io import load_case
 
 OMEGA = math.pi / 6.0  # rad/s, the synthetic slide's
 SPEED = 15.0 * OMEGA  # mm/s, its peak slide speed
@@ -122,3 +125,15 @@ def test_the_markdown_table_has_a_row_per_configuration_in_mN():
     assert len(lines) == 4 and all(line.count("|") == 14 for line in lines)
     assert lines[3].startswith("| tilt | 1 | 550.0 (550.0 to 550.0) |")
     assert "| 2.00 (2.00 to 2.00) | -50.0 (-50.0 to -50.0) | – | +10.0" in lines[3]
+
+
+def test_the_study_names_a_configuration_by_what_it_sets_away_from_the_ideal_head():
+    spec = importlib.util.spec_from_file_location(
+        "study", Path(__file__).parents[2] / "validation" / "reversal_peaks" / "study.py")
+    study = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(study)
+    assert study.configuration_label(load_case("orthogonal")) == "ideal"
+    case = load_case("parallel", ["head.tilt_spread_x='3 deg'", "head.length_spread=0.05",
+                                  "head.root_jitter='0.2 mm'", "contact.between_bristles=true"])
+    assert study.configuration_label(case) == (
+        "tilt spread x 3 deg, length spread 5 %, root jitter 0.2 mm, contact between blades")

@@ -12,17 +12,18 @@ inferred level (0.5 x R_ideal, ±20 %)::
     python validation/reversal_peaks/study.py --slide orthogonal \\
         /work/study-results/orthogonal-ideal /work/study-results/orthogonal-tilt_x ...
 
-A run's configuration is named by its sweep's swept values other than head.seed (summary.csv's
-columns between status and compute_time), e.g. ``tilt_spread_x = 0.5 deg``; a run whose swept
-values are all 0 or false is ``ideal``, the default reference. Wall time: run.json's
-``solver_wall_time_s_sum`` (the run's solves; runs of a sweep overlap on the workers).
+A run's configuration is named by the study's keys its case sets away from their defaults
+(the ideal head, no contact between bristles, the paper's friction law), e.g. ``tilt spread
+x 0.5 deg``; a run with none is ``ideal``, the default reference. Wall time: run.json's
+``solver_wall_time_s_sum`` (the run's solves; runs of a sweep overlap on the workers, and
+the machine's other work slows them: indicative).
 """
 
 from __future__ import annotations
 
 import argparse
-import csv
-import re
+import dataclasses
+import json
 import sys
 from pathlib import Path
 
@@ -35,51 +36,77 @@ from exubrush.output.reversal import (
     markdown_table,
     reversal_metrics,
 )
+from exubrush.parameters.case import Case
+from exubrush.parameters.fields import describe_key
+from exubrush.util.units import convert
 
-_HEADER = re.compile(r"^(?P<key>[^\[]+?)(?: \[(?P<unit>[^\]]*)\])?$")
+STUDY_KEYS = {  # dotted key: its name in a configuration's label
+    "head.tilt_spread_x": "tilt spread x",
+    "head.tilt_spread_y": "tilt spread y",
+    "head.length_spread": "length spread",
+    "head.misalign_x": "misalign x",
+    "head.misalign_y": "misalign y",
+    "head.root_jitter": "root jitter",
+    "contact.between_bristles": "contact between blades",
+    "contact.friction_model": "friction",  # the stick/slip law, once it is in exubrush
+}
 
 
-def _label(swept: dict[str, tuple[str, str]]) -> str:
-    """``ideal`` or ``name = value unit, ...`` of a run's swept values {key: (value, unit)}."""
-    if all(value.lower() in ("0", "false") for value, _ in swept.values()):
-        return "ideal"
-    return ", ".join(f"{key.split('.')[-1]} = {value}{' ' + unit if unit else ''}"
-                     for key, (value, unit) in swept.items())
+def configuration_label(case: Case) -> str:
+    """``ideal`` or the study's keys ``case`` sets away from their defaults, with units
+    (a fraction in %, an angle in deg), e.g. ``tilt spread x 3 deg, root jitter 0.2 mm``."""
+    parts = []
+    for key, name in STUDY_KEYS.items():
+        *parents, leaf = key.split(".")
+        owner = case
+        for part in parents:
+            owner = getattr(owner, part)
+        if not hasattr(owner, leaf):
+            continue  # a key this version of exubrush does not have yet
+        value = getattr(owner, leaf)
+        default = next(f.default for f in dataclasses.fields(owner) if f.name == leaf)
+        if value == default:
+            continue
+        if isinstance(value, bool):
+            parts.append(name if value else f"no {name}")
+        elif isinstance(value, str):
+            parts.append(f"{name} {value}")
+        else:
+            _, meta = describe_key(Case, key)
+            unit = "%" if meta["unit"] == "1" else meta["display"]
+            shown = 100.0 * value if unit == "%" else convert(value, meta["unit"], unit)
+            parts.append(f"{name} {round(shown, 6):g} {unit}")
+    return ", ".join(parts) or "ideal"
 
 
 def sweep_runs(folder: Path) -> list[SeedRun]:
-    """The completed runs of one sweep folder, measured (module text).
+    """The completed runs of one sweep folder (sweep.json's runs), measured (module text).
 
     Raises
     ------
     ValueError
-        If the folder has no summary.csv, or a completed run is too short or does not touch
+        If the folder has no sweep.json, or a completed run is too short or does not touch
         (reversal_metrics' message, with the run's name).
     """
-    summary = folder / "summary.csv"
-    if not summary.is_file():
-        raise ValueError(f"{folder}: no summary.csv (not a finished exubrush sweep folder)")
-    with open(summary, newline="", encoding="utf-8") as handle:
-        table = list(csv.reader(handle))
-    header = table[0]
-    swept_columns = range(header.index("status") + 1, header.index("compute_time [s]"))
+    try:
+        names = json.loads((folder / "sweep.json").read_text(encoding="utf-8"))["runs"]
+    except (OSError, ValueError, KeyError):
+        raise ValueError(f"{folder}: no readable sweep.json (not an exubrush sweep folder)"
+                         ) from None
     runs = []
-    for row in table[1:]:
-        if row[1] != "completed":
+    for name in names:
+        try:
+            results = read_results(folder / name)
+        except ResultsError:
+            continue  # not run yet, or failed before storing forces
+        if results.metadata.get("status") != "completed":
             continue
-        swept, seed = {}, None
-        for column in swept_columns:
-            match = _HEADER.match(header[column])
-            if match["key"] == "head.seed":
-                seed = int(row[column])
-            else:
-                swept[match["key"]] = (row[column], match["unit"] or "")
-        results = read_results(folder / row[0])
         try:
             metrics = reversal_metrics(ForceSeries.from_results(results))
         except ValueError as error:
-            raise ValueError(f"{folder / row[0]}: {error}") from None
-        runs.append(SeedRun(_label(swept), 0 if seed is None else seed, metrics,
+            raise ValueError(f"{folder / name}: {error}") from None
+        case = results.case()
+        runs.append(SeedRun(configuration_label(case), case.head.seed, metrics,
                             float(results.metadata["solver_wall_time_s_sum"])))
     return runs
 
