@@ -162,8 +162,11 @@ def configuration_table(runs: list[SeedRun], reference: str, flat_band: float) -
     Raises
     ------
     ValueError
-        If no run has the ``reference`` configuration, or a configuration repeats a seed.
+        If there is no run, no run has the ``reference`` configuration, or a configuration
+        repeats a seed.
     """
+    if not runs:
+        raise ValueError("no completed run to tabulate")
     by_configuration: dict[str, dict[int, dict[str, float]]] = {}
     for run in runs:
         seeds = by_configuration.setdefault(run.configuration, {})

@@ -113,6 +113,8 @@ def test_the_study_table_compares_each_seed_with_the_reference_seed():
 
 
 def test_the_study_table_refuses_a_missing_reference_and_a_repeated_seed():
+    with pytest.raises(ValueError, match="no completed run"):
+        configuration_table([], "ideal", flat_band=0.16)
     with pytest.raises(ValueError, match="no run of the reference configuration 'ideal'"):
         configuration_table([_run("tilt", 1, 2.0, 1.0)], "ideal", flat_band=0.16)
     with pytest.raises(ValueError, match="seed 1 twice"):
