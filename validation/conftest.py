@@ -6,7 +6,7 @@ import pytest
 
 SLOW_NOTEBOOKS = {"howell_parameters.ipynb", "sliding_bristle.ipynb", "surfaces.ipynb",
                   "bristle_contact.ipynb", "head_contact.ipynb", "elastica_convergence.ipynb",
-                  "shear_beam.ipynb"}
+                  "shear_beam.ipynb", "reversal_peaks.ipynb"}
 
 
 def pytest_collection_modifyitems(items):

@@ -9,6 +9,9 @@ Metrics of one run (from its forces and shapes; empty where the run has no such 
   approach and a stroke cut off by the end of the run are left out);
 - the reversal peak: the largest F_n where the slide speed is below the flat zone's
   around a reversal (exubrush.output.experiment.reversal_zones);
+- the reversal ratio R, its peak's duration and the flat-zone mean F_n over all whole
+  strokes (exubrush.output.reversal.reversal_metrics: R is the largest F_n at a reversal
+  after the first over that mean; the duration is that peak's width at half its excess);
 - the largest tip deflection: the largest distance a tip moved relative to its root,
   against the first stored shape (bristles straight before the approach).
 
@@ -26,16 +29,19 @@ from pathlib import Path
 
 import numpy as np
 
-from exubrush.output.experiment import reversal_zones, strokes
+from exubrush.output.experiment import ForceSeries, reversal_zones, strokes
+from exubrush.output.reversal import FLAT_SPEED, reversal_metrics
 from exubrush.util.files import atomic_file
 
-FLAT_SPEED = 0.8  # flat zone: slide speed >= this fraction of the stroke's peak
 DIRECTIONS = ((1, "forward"), (-1, "backward"))
 METRICS = (  # (column name, unit)
     *((f"flat_normal_force_{d}", "N") for _, d in DIRECTIONS),
     *((f"flat_tangential_force_{d}", "N") for _, d in DIRECTIONS),
     *((f"friction_coefficient_{d}", "-") for _, d in DIRECTIONS),
     ("reversal_peak_normal_force", "N"),
+    ("reversal_ratio", "-"),
+    ("reversal_peak_duration", "s"),
+    ("flat_normal_force", "N"),
     ("largest_tip_deflection", "mm"),
     ("wiped_area_per_stroke", "mm^2"),
     ("force_share_spread", "-"),
@@ -66,6 +72,7 @@ def run_metrics(results) -> dict[str, float]:
                  for a, b in reversal_zones(time, velocity, FLAT_SPEED)]
         if peaks:
             metrics["reversal_peak_normal_force"] = max(peaks)
+        metrics.update(_reversal(ForceSeries.from_results(results)))
     nodes = results.shape_nodes
     if nodes.shape[0] >= 1 and nodes.shape[2] >= 2:
         span = nodes[:, :, -1, :] - nodes[:, :, 0, :]  # tip relative to root [mm]
@@ -73,6 +80,18 @@ def run_metrics(results) -> dict[str, float]:
             np.max(np.linalg.norm(span - span[0], axis=-1)))
     metrics.update(_cleaning_metrics(results))
     return metrics
+
+
+def _reversal(series: ForceSeries) -> dict[str, float]:
+    """R, its peak's duration [s] and the flat-zone mean F_n [N] of a run long enough to have
+    them (none for a run without a whole stroke or a later reversal, or one that does not
+    touch: those stay NaN)."""
+    try:
+        found = reversal_metrics(series, FLAT_SPEED)
+    except ValueError:
+        return {}
+    return {"reversal_ratio": found["ratio"], "reversal_peak_duration": found["duration"],
+            "flat_normal_force": found["flat_normal"]}
 
 
 def _cleaning_metrics(results) -> dict[str, float]:

@@ -85,13 +85,17 @@ def test_sweep_equals_separate_runs_bit_for_bit(tmp_path, sweep_file, separate_r
     assert list(table["run"]) == list(RUNS)
     assert (out / "sensitivity.csv").is_file()
     # every metric of every run is defined (two whole strokes, both directions) but the
-    # tooth row's gap depth: the sweep brushes the plane
+    # tooth row's gap depth (the sweep brushes the plane) and the reversal peak's duration
+    # where no later reversal rises above the flat mean (R <= 1: these short stiff bristles)
     header = rows[0].split(",")
     depth = header.index("interdental_depth [mm]")
+    duration = header.index("reversal_peak_duration [s]")
+    ratio = header.index("reversal_ratio [-]")
     for row in rows[1:]:
         cells = row.split(",")
         assert cells[depth] == ""
-        assert "" not in cells[:depth] + cells[depth + 1:]
+        assert (cells[duration] == "") == (float(cells[ratio]) <= 1.0)
+        assert "" not in [c for i, c in enumerate(cells) if i not in (depth, duration)]
     again = cli("sweep", str(sweep_file), "--workers", "2", "--out", str(out),
                       "--quiet")
     assert again.returncode == 0 and "(3 done before)" in again.stdout

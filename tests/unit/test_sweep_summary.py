@@ -49,6 +49,18 @@ def test_run_metrics_of_a_known_series():
     assert metrics["largest_tip_deflection"] == pytest.approx(math.sqrt(10.0), rel=1e-12)
 
 
+def test_run_metrics_carry_the_reversal_ratio_its_duration_and_the_flat_mean():
+    metrics = run_metrics(synthetic_results())
+    # three whole strokes at F_n = 1 N; every later reversal peaks at 1 + 2 N: R = 3
+    assert metrics["flat_normal_force"] == pytest.approx(1.0, rel=1e-12)
+    assert metrics["reversal_ratio"] == pytest.approx(3.0, rel=1e-9)
+    # above 1 + half the excess (2 N) where 2 exp(-t²/2σ²) > 1: the Gaussian's full width
+    # at half maximum 2 sqrt(2 ln 2) σ, σ = 0.01 period; linear crossings on a 0.2 ms grid
+    # move it by far less than 1e-5 s
+    fwhm = 2.0 * math.sqrt(2.0 * math.log(2.0)) * 0.01 * PERIOD
+    assert metrics["reversal_peak_duration"] == pytest.approx(fwhm, abs=1e-5)
+
+
 def test_metrics_of_a_run_without_whole_strokes_are_undefined_not_zero():
     results = synthetic_results()
     short = results.time <= REST + 0.2 * PERIOD  # rest and the first quarter stroke only
