@@ -17,7 +17,8 @@ sensitivity', holds the table and the commands that made it)::
 
 Per run (mN, s): the flat-zone forces per direction, the peak per reversal, R and the
 peak's duration of :func:`exubrush.output.reversal.reversal_metrics` (one definition with
-the sweep summary and validation/reversal_peaks), and the run's wall time (run.json ``wall_time_s``: simulate() alone).
+the sweep summary and validation/reversal_peaks), and the run's wall time (run.json
+``wall_time_s``: simulate() alone).
 """
 
 from __future__ import annotations

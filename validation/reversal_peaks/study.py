@@ -48,7 +48,9 @@ STUDY_KEYS = {  # dotted key: its name in a configuration's label
     "head.misalign_y": "misalign y",
     "head.root_jitter": "root jitter",
     "contact.between_bristles": "contact between blades",
-    "contact.friction_model": "friction",  # the stick/slip law, once it is in exubrush
+    "contact.friction_model": "friction",
+    "contact.static_velocity": "band v_s",
+    "contact.dynamic_velocity": "v_d",
 }
 
 
