@@ -178,8 +178,10 @@ def test_a_sphere_pulled_gently_rolls_without_slipping():
 
 def _one_bristle(*overrides):
     """The paper's orthogonal case on one bristle, one period: (flat-zone mean F_n of its
-    whole strokes [N], the largest F_n in each reversal zone [N])."""
-    from exubrush.output.experiment import reversal_zones, strokes
+    whole strokes [N], the largest F_n in each reversal zone [N]), as the reversal-peak
+    study measures them (exubrush.output.reversal.reversal_metrics)."""
+    from exubrush.output.experiment import ForceSeries
+    from exubrush.output.reversal import reversal_metrics
     from exubrush.parameters.io import load_case
     from exubrush.simulation import simulate
 
@@ -187,14 +189,8 @@ def _one_bristle(*overrides):
                                     *overrides])
     results = simulate(case, progress=False)
     assert results.metadata["status"] == "completed", results.metadata["message"]
-    time, force = results.time, results.normal_force
-    velocity = np.gradient(results.slider_position, time)
-    flat = np.zeros(time.size, dtype=bool)
-    for stroke in strokes(time, velocity, 0.8):
-        flat |= (time >= stroke.flat_start) & (time <= stroke.flat_end)
-    peaks = [np.max(force[(time >= a) & (time <= b)])
-             for a, b in reversal_zones(time, velocity, 0.8)]
-    return float(np.mean(force[flat])), np.array(peaks)
+    metrics = reversal_metrics(ForceSeries.from_results(results))
+    return metrics["flat_normal"], np.array(metrics["peaks"])
 
 
 def test_a_bristle_of_the_papers_head_gets_the_papers_law_without_its_creep():
