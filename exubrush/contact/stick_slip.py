@@ -50,7 +50,13 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING
 
-from exubrush.contact.laws import drop_can_lag, friction_drop, normal_force, plane_slip
+from exubrush.contact.laws import (
+    drop_can_lag,
+    drop_ratios,
+    friction_drop,
+    normal_force,
+    plane_slip,
+)
 from exubrush.util.float_math import FLOAT_MATH
 
 if TYPE_CHECKING:  # the law reads the parameters' attributes only
@@ -121,8 +127,8 @@ def committed_state(law: ContactLaw, radius: float, centre, rotation, velocity, 
     Off the plane (the centre at or above r) the anchor follows the tip (u = 0: touchdown
     sticks); a stretch beyond s_e is pulled back to s_e along itself (the slip's plastic
     part); the rolling's J is renewed at the tip's angles and the drop ratio at its slip
-    speed (exubrush.contact.laws.plane_slip, the paper's slip). Committing a committed
-    state again leaves it as it is.
+    speed (exubrush.contact.laws.drop_ratios on the plane, the paper's slip). Committing
+    a committed state again leaves it as it is.
     """
     u_x, u_y = stretch(radius, centre, rotation, state)
     length = math.hypot(u_x, u_y)
@@ -133,6 +139,5 @@ def committed_state(law: ContactLaw, radius: float, centre, rotation, velocity, 
     j_xy, j_xz, j_yz = rolling_matrix(radius, rotation)
     renewed = [0.0, 0.0, j_xy, j_xz, j_yz, 0.0]
     track_x, track_y = stretch(radius, centre, rotation, renewed)
-    slip_x, slip_y = plane_slip(radius, velocity, omega)
-    drop = friction_drop(law, math.hypot(slip_x, slip_y))
+    (drop,) = drop_ratios(law, radius, None, centre, velocity, omega)
     return [track_x - u_x, track_y - u_y, j_xy, j_xz, j_yz, drop]
