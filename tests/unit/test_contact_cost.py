@@ -57,3 +57,14 @@ def test_seeds_run_each_run_once_per_seed_and_figures_use_the_sums(benchmark_scr
     calls.clear()
     script.measure(row, {"this": None}, 1)
     assert calls[0] == ("tuft", ["motion.periods=0.1"])
+
+
+def test_nineteen_filaments_row_compares_the_same_tuft_with_and_without_contact(
+        benchmark_script, tmp_path):
+    row = _rows(benchmark_script, tmp_path)["19 filaments"]
+    contact = load_case(*row["runs"]["contact"])
+    free = load_case(*row["runs"]["free"])
+    assert contact.head.tufts[0].filaments == free.head.tufts[0].filaments == 19
+    assert contact.contact.between_bristles and not free.contact.between_bristles
+    assert not free.solver.share_identical  # every filament solved, none taken from a twin
+    assert row["figure"]({"contact": 50.0, "free": 5.0}) == 10.0

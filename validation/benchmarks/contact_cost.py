@@ -6,17 +6,20 @@
 Each row is a pair (or set) of runs whose wall times are compared with a target:
 
 - ``tuft window``: the ``tuft`` case (37 filaments), approach and 0.1 period, with contact
-  between the filaments against without (target: at most 3x); without, every filament is
+  between the filaments against without (target: at most 20x, issue 47; the 3x before it was
+  out of reach); without, every filament is
   solved (``solver.share_identical=false``: twins solved once would make the free run 37
   times cheaper, and the row is about what touching costs a filament that is solved; a
   source tree before 0.16.0 does not know the key, and solves every filament anyway: drop
   it there);
+- ``19 filaments``: the same window on ``tuft7.toml`` with 19 filaments in a 1.2 mm hole,
+  with contact against without, every filament solved (target: at most 10x, issue 47);
 - ``tuft period``: the same with contact, approach and one period (target: under 120 s);
 - ``filaments``: tufts of 7, 19, 37 and 61 filaments (``tuft7.toml`` in 0.8, 1.2, 1.6 and
   2.0 mm holes), approach and 0.1 period with contact: the wall time per filament (target:
   the largest within 1.5x of the smallest);
 - ``blade head``: the paper's head (``orthogonal``), approach and 0.1 period, with contact
-  between its blades against without (target: at most 5x);
+  between its blades against without (target: at most 15x, issue 47; 5x before);
 - ``tooth row``: ``interdental`` against ``orthogonal``, approach and half a period
   (target: at most 1.5x);
 - ``oscillating-rotating``: the round head of 703 filaments, approach and 0.5 s of turning,
@@ -89,7 +92,13 @@ def rows(folder: Path) -> dict[str, dict]:
         "tuft window": {
             "runs": {"contact": ("tuft", ["motion.periods=0.1", CONTACT]),
                      "free": ("tuft", ["motion.periods=0.1", NO_CONTACT, EACH])},
-            "figure": lambda w: w["contact"] / w["free"], "target": 3.0,
+            "figure": lambda w: w["contact"] / w["free"], "target": 20.0,
+            "unit": "x (contact / free)"},
+        "19 filaments": {
+            "runs": {"contact": (_tuft_file(folder, 19), ["motion.periods=0.1"]),
+                     "free": (_tuft_file(folder, 19), ["motion.periods=0.1", NO_CONTACT,
+                                                       EACH])},
+            "figure": lambda w: w["contact"] / w["free"], "target": 10.0,
             "unit": "x (contact / free)"},
         "tuft period": {
             "runs": {"contact": ("tuft", ["motion.periods=1", CONTACT])},
@@ -102,7 +111,7 @@ def rows(folder: Path) -> dict[str, dict]:
         "blade head": {
             "runs": {"contact": ("orthogonal", ["motion.periods=0.1", CONTACT]),
                      "free": ("orthogonal", ["motion.periods=0.1"])},
-            "figure": lambda w: w["contact"] / w["free"], "target": 5.0,
+            "figure": lambda w: w["contact"] / w["free"], "target": 15.0,
             "unit": "x (contact / free)"},
         "tooth row": {
             "runs": {"interdental": ("interdental", ["motion.periods=0.5"]),
@@ -199,8 +208,8 @@ def _cell(value) -> str:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--only", nargs="*", metavar="ROW",
-                        choices=["tuft window", "tuft period", "filaments", "blade head",
-                                 "tooth row", "oscillating-rotating", "sonic",
+                        choices=["tuft window", "19 filaments", "tuft period", "filaments",
+                                 "blade head", "tooth row", "oscillating-rotating", "sonic",
                                  "sonic window"])
     parser.add_argument("--repeat", type=int, default=1)
     parser.add_argument("--seeds", type=int, nargs="+", metavar="N",
