@@ -84,6 +84,13 @@ class Solver(Parameters):
     newton_iterations: int = param(
         12, "Newton iterations before a step is given up and cut", minimum=10,
     )
+    touching_give_up: float = param(
+        0.1, "in a group of bristles that touch each other, a step attempt whose Newton "
+             "residual after two updates or more is still above this share of its first is "
+             "given up and the step cut at once, instead of after newton_iterations (0: "
+             "never; runs with the line search; docs/decisions/0026)",
+        minimum=0.0, below=1.0,
+    )
     line_search: str = param(
         "auto",
         "shorten Newton's updates until the residual falls (a backtracking line search): "

@@ -22,6 +22,14 @@ what Exudyn continues from, so the search is not run on them (:func:`has_lie_gro
 Exudyn restarts a modified Newton that diverges: it resets the state to the predictor with
 a zero increment and calls the same function; a zero increment marks that call, which then
 only records the state.
+
+Giving up a hopeless attempt. In a group of touching filaments, an attempt whose residual
+is still above a tenth of its first after two updates rarely converges within Exudyn's
+iterations: of the 385 failed attempts of a 19-filament tuft's window, each spent all 12
+iterations and 9 Jacobians before the step was cut (docs/decisions/0026).
+:class:`LineSearch` with ``give_up`` > 0 stops Newton there (Exudyn's ``conv.stopNewton``),
+so that the step is cut at once, unless it is at its minimum already (Exudyn cuts
+no further there: the run would stop).
 """
 
 from __future__ import annotations
@@ -36,6 +44,9 @@ import numpy as np
 SUFFICIENT_DECREASE = 1e-4
 # the shortest update tried (six halvings); below it the best trial is kept
 SHORTEST = 1.0 / 64.0
+# the Newton iteration from which an attempt may be given up (LineSearch.give_up): after
+# two updates, when Exudyn's modified Newton first judges its contractivity
+GIVE_UP_FROM = 3
 
 
 def backtrack(residual_at, last: float, full: float,
@@ -78,13 +89,14 @@ def backtrack(residual_at, last: float, full: float,
 @dataclass
 class LineSearchCounts:
     """What a line search did in a solve: iterations checked, iterations whose update was
-    shortened, residuals evaluated for shorter updates, and checks where no shorter update
-    was sufficient (the best was kept)."""
+    shortened, residuals evaluated for shorter updates, checks where no shorter update
+    was sufficient (the best was kept), and step attempts given up."""
 
     checked: int = 0
     shortened: int = 0
     trials: int = 0
     insufficient: int = 0
+    given_up: int = 0
 
 
 class LineSearch:
@@ -93,13 +105,18 @@ class LineSearch:
 
     It reads the solver from ``mbs.sys["dynamicSolver"]`` and its settings from
     ``mbs.sys["simulationSettings"]``, which ``SolveDynamic(..., storeSolver=True)`` sets.
+    ``give_up`` > 0: from iteration :data:`GIVE_UP_FROM` on, an attempt whose residual is
+    above this share of its first is given up (module docstring); 0: never.
     """
 
-    def __init__(self, sufficient: float = SUFFICIENT_DECREASE, shortest: float = SHORTEST):
+    def __init__(self, sufficient: float = SUFFICIENT_DECREASE, shortest: float = SHORTEST,
+                 give_up: float = 0.0):
         self.sufficient = sufficient
         self.shortest = shortest
+        self.give_up = give_up
         self.counts = LineSearchCounts()
         self._last = None  # the state of the last iterate (q, q_t, q_tt, λ)
+        self._first = math.inf  # the attempt's first residual (after its predictor)
 
     @staticmethod
     def _state(data) -> tuple[np.ndarray, ...]:
@@ -120,6 +137,14 @@ class LineSearch:
     def __call__(self, mbs, t, newton_iteration, discontinuous_iteration) -> None:
         data = mbs.systemData
         solver = mbs.sys["dynamicSolver"]
+        if newton_iteration == 1:  # Exudyn's residual is still the predictor's
+            self._first = solver.conv.residual
+        elif (self.give_up > 0.0 and newton_iteration >= GIVE_UP_FROM
+              and solver.conv.residual > self.give_up * self._first
+              and solver.it.currentStepSize > solver.it.minStepSize):
+            solver.conv.stopNewton = True
+            self.counts.given_up += 1
+            return
         # the predictor, also after a restart (a zero increment)
         if newton_iteration == 0 or self._last is None or not solver.GetNewtonSolution().any():
             self._last = self._state(data)

@@ -324,7 +324,7 @@ def build_scene(prepared: PreparedCase, selection: tuple[int, ...] | None = None
         from exubrush.contact.exudyn_between import locate_in_system
 
         locate_in_system(scene.mbs, scene.bristle_contact)
-    _add_line_search(scene, case.solver.line_search)
+    _add_line_search(scene, case.solver.line_search, case.solver.touching_give_up)
     return scene
 
 
@@ -447,20 +447,22 @@ def add_step_hooks(scene: Scene, prepared: PreparedCase, tips: list) -> None:
         hooks.add(CANDIDATES, contact_refresh(touching))
 
 
-def _add_line_search(scene: Scene, setting: str) -> None:
+def _add_line_search(scene: Scene, setting: str, give_up: float = 0.0) -> None:
     """Run Newton's line search (exubrush.run.newton) as ``solver.line_search`` says. "auto":
     "always" in a group of touching bristles (a Newton iteration there costs a Jacobian of
     the group, the search's Python next to nothing), off elsewhere: one bristle's Jacobian
     is cheap, and on the tooth row 45 % fewer Jacobians saved 2 % of CPU time while the
     snaps' paths moved (decisions/0001); off where the nodes' rotations are on the Lie
-    group. "after-cut" runs its switch in the step hooks' phase AFTER_CUT."""
+    group. "after-cut" runs its switch in the step hooks' phase AFTER_CUT. In a group of
+    touching bristles the search also gives up hopeless attempts (``give_up``,
+    ``solver.touching_give_up``)."""
     if setting == "auto":  # the nodes are looked at only where the search would run
         if scene.bristle_contact is None or has_lie_group_nodes(scene.mbs):
             return
         setting = "always"
     if setting == "off":
         return
-    scene.line_search = LineSearch()
+    scene.line_search = LineSearch(give_up=give_up if scene.bristle_contact is not None else 0.0)
     if setting == "always":
         scene.mbs.SetPreNewtonResidualUserFunction(scene.line_search)
     else:

@@ -24,8 +24,10 @@ class SolverStatistics:
     newton_iterations: int = 0
     jacobian_updates: int = 0
     rejected_modified_newton_steps: int = 0
-    # Newton updates that the line search shortened (exubrush.run.newton)
+    # Newton updates that the line search shortened, step attempts it gave up
+    # (exubrush.run.newton)
     shortened_updates: int = 0
+    given_up_attempts: int = 0
 
     def __add__(self, other: SolverStatistics) -> SolverStatistics:
         return SolverStatistics(*(a + b for a, b in zip(dataclasses.astuple(self),

@@ -331,7 +331,7 @@ def _kept_coordinates(coordinates, recorded, output):
 
 def solver_statistics(mbs, line_search: LineSearch | None = None) -> SolverStatistics:
     """Step, Newton and Jacobian counts of the last dynamic solve of ``mbs``, and the
-    updates its ``line_search`` shortened."""
+    updates its ``line_search`` shortened and the attempts it gave up."""
     solver = mbs.sys.get("dynamicSolver")
     if solver is None:
         return SolverStatistics()
@@ -342,6 +342,7 @@ def solver_statistics(mbs, line_search: LineSearch | None = None) -> SolverStati
         jacobian_updates=int(it.newtonJacobiCount),
         rejected_modified_newton_steps=int(it.rejectedModifiedNewtonSteps),
         shortened_updates=line_search.counts.shortened if line_search is not None else 0,
+        given_up_attempts=line_search.counts.given_up if line_search is not None else 0,
     )
 
 

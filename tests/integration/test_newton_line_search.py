@@ -15,10 +15,11 @@ from exubrush.run.solver import quiet
 from exubrush.simulation import simulate
 
 
-def _arctan_spring(search, start, force, step, end, tolerance=1e-8):
+def _arctan_spring(search, start, force, step, end, tolerance=1e-8, minimum_step=None):
     """A unit mass on a spring pulling with force·arctan(x) [N] from x = ``start``, at rest,
-    stepped with fixed steps and full Newton; returns (x over the steps, Newton
-    iterations). Newton on arctan overshoots from far out: the slope there is small."""
+    stepped with full Newton, at fixed steps or (``minimum_step``) cut after a failed
+    attempt down to that; returns (x over the recorded steps, Newton iterations). Newton on
+    arctan overshoots from far out: the slope there is small."""
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
     node = mbs.AddNode(eii.NodePoint(referenceCoordinates=[0.0, 0.0, 0.0],
@@ -36,7 +37,10 @@ def _arctan_spring(search, start, force, step, end, tolerance=1e-8):
     settings = quiet(exu.SimulationSettings())
     ti = settings.timeIntegration
     ti.endTime, ti.numberOfSteps = end, round(end / step)
-    ti.automaticStepSize = False
+    ti.automaticStepSize = minimum_step is not None
+    if minimum_step is not None:
+        ti.minimumStepSize = minimum_step
+        ti.adaptiveStepDecrease = 0.25
     ti.generalizedAlpha.spectralRadius = 0.0
     ti.newton.useModifiedNewton = False
     ti.newton.adaptInitialResidual = False
@@ -72,6 +76,33 @@ def test_where_the_update_does_not_overshoot_the_solution_is_the_same():
     plain, _ = _arctan_spring(None, 0.5, 1e4, 0.005, 0.5, tolerance=1e-10)
     searched, _ = _arctan_spring(LineSearch(), 0.5, 1e4, 0.005, 0.5, tolerance=1e-10)
     assert np.max(np.abs(searched - plain)) < 1e-7 * 0.5
+
+
+def test_a_hopeless_attempt_is_given_up_and_its_step_cut():
+    # the overshooting spring above, its steps cut where Newton fails: the first attempts'
+    # residuals are still above a tenth of their first after two (shortened) updates, so
+    # with give_up they are abandoned at the third iteration and their steps cut. Here the
+    # search alone would have converged (44 iterations in all against 183 given up and cut):
+    # the rule pays only where such attempts mostly fail (docs/decisions/0026)
+    kept = LineSearch()
+    given = LineSearch(give_up=0.1)
+    x_kept, _ = _arctan_spring(kept, 10.0, 1e6, 0.1, 2.0, minimum_step=1e-6)
+    x_given, _ = _arctan_spring(given, 10.0, 1e6, 0.1, 2.0, minimum_step=1e-6)
+    assert kept.counts.given_up == 0 and given.counts.given_up > 0
+    # the equilibrium is reached all the same (spectral radius 0 damps the mode out)
+    assert abs(x_kept[-1]) < 1e-9 and abs(x_given[-1]) < 1e-9
+
+
+def test_an_attempt_at_the_minimum_step_is_not_given_up():
+    # a step that cannot be cut (the minimum step is the step): giving up would stop the
+    # run, so the search lets Newton run to its iterations as without the rule
+    given = LineSearch(give_up=0.1)
+    x_given, iterations_given = _arctan_spring(given, 10.0, 1e6, 0.1, 2.0, minimum_step=0.1)
+    x_plain, iterations_plain = _arctan_spring(LineSearch(), 10.0, 1e6, 0.1, 2.0,
+                                               minimum_step=0.1)
+    assert given.counts.given_up == 0
+    assert iterations_given == iterations_plain
+    assert np.array_equal(x_given, x_plain)
 
 
 SMALL = ["head.rows=1", "head.columns=1", "motion.periods=0.05"]
@@ -117,6 +148,16 @@ def test_a_touching_group_searches_at_every_iteration():
     scene = build_scene(prepared, prepared.groups[0])
     assert scene.line_search is not None
     assert scene.mbs.GetPreNewtonResidualUserFunction() != 0
+    # and gives up hopeless attempts as solver.touching_give_up says
+    assert scene.line_search.give_up == case.solver.touching_give_up > 0.0
+
+
+def test_one_bristle_never_gives_up_an_attempt():
+    # touching_give_up is about groups of touching bristles: a lone bristle's search
+    # (asked for with "always") lets Newton run to its iterations
+    scene = build_scene(prepare(load_case("orthogonal", [*SMALL, "solver.line_search='always'"])),
+                        (0,))
+    assert scene.line_search.give_up == 0.0
 
 
 def test_a_search_on_rotation_vectors_is_refused_in_one_line():
