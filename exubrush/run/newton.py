@@ -29,9 +29,9 @@ iterations: of the 385 failed attempts of a 19-filament tuft's window, each spen
 iterations and 9 Jacobians before the step was cut (docs/decisions/0026).
 :class:`LineSearch` with ``give_up`` > 0 stops Newton there (Exudyn's ``conv.stopNewton``),
 so that the step is cut at once, unless it is at its minimum already (Exudyn cuts
-no further there: the run would stop). An attempt that Exudyn restarts from its
-predictor (after a diverged iterate) is back at its first residual, and is given up at
-the restart.
+no further there: the run would stop). Exudyn restarts an attempt from its predictor
+after a diverged iterate, which puts its residual back at its first: from the third
+iteration on, such an attempt is given up at the restart.
 """
 
 from __future__ import annotations
