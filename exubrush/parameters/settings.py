@@ -87,8 +87,9 @@ class Solver(Parameters):
     touching_give_up: float = param(
         0.1, "in a group of bristles that touch each other, a step attempt whose Newton "
              "residual after two updates or more is still above this share of its first is "
-             "given up and the step cut at once, instead of after newton_iterations (0: "
-             "never; runs with the line search; docs/decisions/0026)",
+             "given up and the step cut at once, instead of after newton_iterations; so is "
+             "one that Exudyn restarts from its third iteration on; never at the minimum "
+             "step (0: never; runs where the line search runs; docs/decisions/0026)",
         minimum=0.0, below=1.0,
     )
     line_search: str = param(

@@ -377,7 +377,7 @@ def unreachable_tufts(case: Case, bristles, reaching: tuple[bool, ...]) -> list[
 def coupled_warning(case: Case, groups) -> list[str]:
     """What contact between bristles will cost: the size of the largest system, and what
     touching groups of two sizes measured against their bristles solved apart
-    (validation/benchmarks/README.md, "Tufts by filament count"; docs/decisions/0026)."""
+    (validation/benchmarks/README.md, "Where the targets stand"; docs/decisions/0026)."""
     largest = max((len(g) for g in groups), default=0)
     if not case.contact.between_bristles or largest < 2:
         return []

@@ -447,7 +447,7 @@ def add_step_hooks(scene: Scene, prepared: PreparedCase, tips: list) -> None:
         hooks.add(CANDIDATES, contact_refresh(touching))
 
 
-def _add_line_search(scene: Scene, setting: str, give_up: float = 0.0) -> None:
+def _add_line_search(scene: Scene, setting: str, give_up: float) -> None:
     """Run Newton's line search (exubrush.run.newton) as ``solver.line_search`` says. "auto":
     "always" in a group of touching bristles (a Newton iteration there costs a Jacobian of
     the group, the search's Python next to nothing), off elsewhere: one bristle's Jacobian

@@ -86,9 +86,12 @@ def test_a_hopeless_attempt_is_given_up_and_its_step_cut():
     # the rule pays only where such attempts mostly fail (docs/decisions/0026)
     kept = LineSearch()
     given = LineSearch(give_up=0.1)
-    x_kept, _ = _arctan_spring(kept, 10.0, 1e6, 0.1, 2.0, minimum_step=1e-6)
-    x_given, _ = _arctan_spring(given, 10.0, 1e6, 0.1, 2.0, minimum_step=1e-6)
+    x_kept, iterations_kept = _arctan_spring(kept, 10.0, 1e6, 0.1, 2.0, minimum_step=1e-6)
+    x_given, iterations_given = _arctan_spring(given, 10.0, 1e6, 0.1, 2.0, minimum_step=1e-6)
     assert kept.counts.given_up == 0 and given.counts.given_up > 0
+    # Exudyn stopped those attempts and cut their steps: Newton took another path (were
+    # the stop ignored, it would run the same iterations as without the rule)
+    assert iterations_given != iterations_kept
     # the equilibrium is reached all the same (spectral radius 0 damps the mode out)
     assert abs(x_kept[-1]) < 1e-9 and abs(x_given[-1]) < 1e-9
 

@@ -48,7 +48,7 @@ MALFORMED = [
     ("set", ["solver.sliding_step_factor=0.5"], "solver.sliding_step_factor: 0.5 must be >= 1"),
     ("set", ["solver.touching_give_up=1"], "solver.touching_give_up: 1 must be < 1"),
     ("set", ["solver.touching_give_up=-0.1"], "solver.touching_give_up: -0.1 must be >= 0"),
-    ("set", ["solver.touching_give_up=nan"], "solver.touching_give_up"),
+    ("set", ["solver.touching_give_up=nan"], "solver.touching_give_up: nan is not a finite number"),
     ("set", ["solver.sliding_speed_fraction=1.5"],
      "solver.sliding_speed_fraction: 1.5 must be < 1"),
     ("set", ["solver.threads=2"], "threads = 2 needs partition 'coupled'"),
