@@ -100,6 +100,8 @@ def test_a_tuft_with_contact_is_one_group_and_reports_its_contacts(cli, tmp_path
     # pairs each
     assert derived["bristle_contacts_max"] >= 12
     assert derived["bristle_overlap_max_mm"] < 0.05 * D
+    # the group's line search counts the Newton attempts it gave up (a count, maybe 0 here)
+    assert isinstance(record["solver_statistics"]["given_up_attempts"], int)
 
 
 @pytest.mark.slow  # 1.2 s or more beside a second worker: full run only
