@@ -88,6 +88,7 @@ def _tuft_file(folder: Path, filaments: int) -> str:
 def rows(folder: Path) -> dict[str, dict]:
     """Each row: its runs as label -> (case, overrides), how its figure is made from their
     wall times (``figure``), the target and what the figure means."""
+    nineteen = _tuft_file(folder, 19)
     return {
         "tuft window": {
             "runs": {"contact": ("tuft", ["motion.periods=0.1", CONTACT]),
@@ -95,9 +96,8 @@ def rows(folder: Path) -> dict[str, dict]:
             "figure": lambda w: w["contact"] / w["free"], "target": 20.0,
             "unit": "x (contact / free)"},
         "19 filaments": {
-            "runs": {"contact": (_tuft_file(folder, 19), ["motion.periods=0.1"]),
-                     "free": (_tuft_file(folder, 19), ["motion.periods=0.1", NO_CONTACT,
-                                                       EACH])},
+            "runs": {"contact": (nineteen, ["motion.periods=0.1"]),
+                     "free": (nineteen, ["motion.periods=0.1", NO_CONTACT, EACH])},
             "figure": lambda w: w["contact"] / w["free"], "target": 10.0,
             "unit": "x (contact / free)"},
         "tuft period": {

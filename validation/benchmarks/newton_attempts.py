@@ -32,6 +32,7 @@ from one_bristle import add_arguments, build
 from step_attempts import attempt_costs, record_attempts
 
 from exubrush.run.solve import solver_statistics
+from exubrush.run.solver import fresh_jacobian_after_step_change
 from exubrush.run.step_hooks import JACOBIAN
 
 # attempts by their Newton iterations: (label, fewest, most)
@@ -101,19 +102,20 @@ def close_residuals(scene, histories: list, lasts: list) -> None:
 
 
 def keep_jacobians(scene, settings, rows: list) -> None:
-    """Keep the Jacobian across steps; renew it after a failed attempt, a slow one (more
-    than CALM iterations) or a new step size, read from the attempts ``rows`` records
-    (step_attempts.record_attempts: the current attempt last)."""
+    """Keep the Jacobian across steps; renew it after a failed attempt or a slow one (more
+    than CALM iterations), read from the attempts ``rows`` records
+    (step_attempts.record_attempts: the current attempt last), and at a new step size
+    (exubrush.run.solver.fresh_jacobian_after_step_change)."""
     settings.timeIntegration.newton.modifiedNewtonJacUpdatePerStep = False
 
     def renew(mbs, t):
         if len(rows) >= 2:
-            (end, start, _, its), (last_end, last_start, _, last_its) = rows[-1], rows[-2]
-            if (start == last_start or its - last_its > CALM
-                    or not np.isclose(end - start, last_end - last_start, rtol=1e-9)):
+            (_, start, _, its), (_, last_start, _, last_its) = rows[-1], rows[-2]
+            if start == last_start or its - last_its > CALM:
                 mbs.solverSignalJacobianUpdate = True
 
     scene.step_hooks.add(JACOBIAN, renew)
+    scene.step_hooks.add(JACOBIAN, fresh_jacobian_after_step_change())
 
 
 def main() -> None:
