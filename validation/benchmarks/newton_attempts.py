@@ -1,6 +1,6 @@
 """Where a solve's Jacobians go, by its Newton attempts' iterations, and why attempts fail.
 
-    python validation/benchmarks/newton_attempts.py [--case validation/benchmarks/tuft7.toml]
+    python validation/benchmarks/newton_attempts.py [--case tuft7.toml beside it]
         [--periods 1] [--bristle 0] [--group] [--set KEY=VALUE ...]
         [--replay ITERATION RATIO] [--keep-jacobians]
 
@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import argparse
 import time
+from pathlib import Path
 
 import numpy as np
 from one_bristle import add_arguments, build
@@ -38,6 +39,7 @@ from exubrush.run.step_hooks import JACOBIAN
 # attempts by their Newton iterations: (label, fewest, most)
 CLASSES = (("1-3", 1, 3), ("4-9", 4, 9), ("10 or more", 10, 10**6))
 CALM = 2  # --keep-jacobians: an attempt of more iterations renews the Jacobian
+MAX_ITERATION = 100  # --replay: beyond any Newton iteration limit a solve is run with
 
 
 def by_iterations(failed: np.ndarray, jacobians: np.ndarray,
@@ -120,15 +122,17 @@ def keep_jacobians(scene, settings, rows: list) -> None:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    add_arguments(parser, case="validation/benchmarks/tuft7.toml", bristle=0, group=True)
+    add_arguments(parser, case=str(Path(__file__).parent / "tuft7.toml"), bristle=0,
+                  group=True)
     parser.add_argument("--replay", type=float, nargs=2, metavar=("ITERATION", "RATIO"),
                         help="replay a give-up rule on the recorded residuals")
     parser.add_argument("--keep-jacobians", action="store_true",
                         help="keep the Jacobian across steps, renewed where Newton needs it")
     args = parser.parse_args()
-    if args.replay and not (args.replay[0] >= 1 and 0.0 < args.replay[1] < 1.0):
+    if args.replay and not (1 <= args.replay[0] <= MAX_ITERATION
+                            and 0.0 < args.replay[1] < 1.0):
         parser.error(f"--replay {args.replay[0]:g} {args.replay[1]:g}: give an iteration "
-                     ">= 1 and a ratio between 0 and 1")
+                     f"from 1 to {MAX_ITERATION} and a ratio between 0 and 1")
     _, scene, settings = build(parser, args, group=args.group)
     rows = record_attempts(scene)
     histories, lasts = record_residuals(scene)

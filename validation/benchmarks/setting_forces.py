@@ -23,6 +23,8 @@ from benchmark import run_in_tree
 
 from exubrush.output.experiment import ForceSeries
 from exubrush.output.reversal import FLAT_SPEED, reversal_metrics, stroke_flat_means
+from exubrush.parameters.fields import ParameterError
+from exubrush.parameters.io import load_case
 
 ROOT = Path(__file__).parents[2]  # the source tree whose exubrush runs
 
@@ -75,6 +77,12 @@ def main() -> None:
         parser.error(f"--seeds {' '.join(map(str, args.seeds))}: give distinct seeds >= 0")
     if args.before == args.after:
         parser.error("--before and --after are the same: give the setting to compare")
+    for overrides in (args.before, args.after):  # a bad case or value: one line, not a run
+        try:
+            load_case(args.case, [f"motion.periods={args.periods:g}",
+                                  f"head.seed={max(args.seeds)}", *overrides])
+        except ParameterError as error:
+            parser.error(str(error))
     runs: dict[str, dict[int, dict]] = {"before": {}, "after": {}}
     for seed in args.seeds:
         for label, overrides in (("before", args.before), ("after", args.after)):
